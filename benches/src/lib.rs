@@ -1,0 +1,1 @@
+//! Criterion benchmarks of Arachis live in `benches/benches/`; this library is empty.

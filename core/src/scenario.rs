@@ -1,0 +1,1 @@
+//! Deterministic set-ups of the standard scenarios (bench bed, pours).

@@ -1,0 +1,1 @@
+//! Arachis host library.
