@@ -1,1 +1,12 @@
-//! Arachis host library.
+//! Arachis host library: lab analysis, designs of experiments, regression and ANOVA,
+//! optimisation, and (later) calibration, diagnosis and reports.
+//!
+//! The `arachis` command-line program in `src/main.rs` is a thin face over these modules.
+#![deny(missing_docs)]
+
+pub mod cli;
+pub mod doe;
+pub mod io;
+pub mod lab;
+pub mod optimize;
+pub mod stats;

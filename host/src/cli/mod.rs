@@ -1,0 +1,41 @@
+//! The `arachis` command line: one module per subcommand, each a thin face over the library.
+//!
+//! Every subcommand returns `anyhow::Result`; `main` prints the error chain and exits with
+//! status 2, so bad input is always a clear message and never a panic.
+
+pub mod doe;
+pub mod lab;
+pub mod pour;
+
+use clap::{Parser, Subcommand};
+
+/// Arachis: calibrated, bit-reproducible DEM models of peanut pods and plants.
+#[derive(Debug, Parser)]
+#[command(name = "arachis", version, about)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Pour spheres into the steel bench-bed cylinder and let them settle.
+    Pour(pour::Args),
+    /// Analyse bench-test measurements (density, Poisson, Hertz modulus, restitution, friction).
+    Lab(lab::Args),
+    /// Designs of experiments: make a design, analyse a response, optimise a fitted surface.
+    Doe(doe::Args),
+}
+
+impl Cli {
+    /// Runs the chosen subcommand.
+    pub fn run(self) -> anyhow::Result<()> {
+        match self.command {
+            Command::Pour(args) => pour::run(args),
+            Command::Lab(args) => lab::run(args),
+            Command::Doe(args) => doe::run(args),
+        }
+    }
+}

@@ -1,0 +1,1 @@
+//! Designs of experiments in coded and actual units (issue 3).

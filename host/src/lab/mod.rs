@@ -1,0 +1,1 @@
+//! Bench-test analysis: turns replicate measurements into parameter values (issue 3).

@@ -1,0 +1,1 @@
+//! Optimisation on fitted response surfaces (issue 3).

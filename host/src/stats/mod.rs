@@ -1,0 +1,1 @@
+//! Regression, ANOVA and hypothesis tests with Design-Expert conventions (issue 3).
