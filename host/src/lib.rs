@@ -10,3 +10,4 @@ pub mod io;
 pub mod lab;
 pub mod optimize;
 pub mod stats;
+pub mod vtk;

@@ -1,0 +1,174 @@
+//! Particle frames as legacy VTK files that ParaView opens directly.
+//!
+//! Each frame is a `POLYDATA` file of vertices with point data: radius (m), velocity (m/s)
+//! and body id. Frames named `frame_000123.vtk` are grouped by ParaView as a time series;
+//! [`write_series`] also writes a `.pvd` collection carrying the simulated time of each frame.
+//!
+//! Exception to "use a library": the legacy VTK format is a few lines of text, and the
+//! `vtkio` crate's stable release is no longer maintained, so we write it here.
+//!
+//! ```
+//! use arachis::vtk::{ParticleFrame, write_frame};
+//! let dir = tempfile::tempdir().unwrap();
+//! let frame = ParticleFrame {
+//!     time_s: 0.0,
+//!     positions_m: vec![[0.0, 0.0, 0.004]],
+//!     radii_m: vec![0.004],
+//!     velocities_m_s: vec![[0.0, 0.0, -0.2]],
+//!     body_ids: vec![0],
+//! };
+//! let path = dir.path().join("frame_000000.vtk");
+//! write_frame(&path, &frame).unwrap();
+//! assert!(std::fs::read_to_string(&path).unwrap().contains("POINTS 1 double"));
+//! ```
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::{ensure, Context};
+
+use crate::io::write_atomic;
+
+/// The state of every sphere at one instant, in SI units.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ParticleFrame {
+    /// Simulated time of the frame, s.
+    pub time_s: f64,
+    /// Sphere centres, m.
+    pub positions_m: Vec<[f64; 3]>,
+    /// Sphere radii, m.
+    pub radii_m: Vec<f64>,
+    /// Sphere centre velocities, m/s.
+    pub velocities_m_s: Vec<[f64; 3]>,
+    /// The body (sphere or clump) each sphere belongs to.
+    pub body_ids: Vec<u32>,
+}
+
+impl ParticleFrame {
+    fn check(&self) -> anyhow::Result<()> {
+        let n = self.positions_m.len();
+        ensure!(
+            self.radii_m.len() == n && self.velocities_m_s.len() == n && self.body_ids.len() == n,
+            "VTK frame arrays differ in length: {} positions, {} radii, {} velocities, {} ids",
+            n,
+            self.radii_m.len(),
+            self.velocities_m_s.len(),
+            self.body_ids.len()
+        );
+        Ok(())
+    }
+}
+
+/// Writes one frame to `path` as legacy ASCII VTK (atomically).
+pub fn write_frame(path: &Path, frame: &ParticleFrame) -> anyhow::Result<()> {
+    frame.check()?;
+    write_atomic(path, |w| {
+        let n = frame.positions_m.len();
+        writeln!(w, "# vtk DataFile Version 3.0")?;
+        writeln!(w, "Arachis particles t = {} s", frame.time_s)?;
+        writeln!(w, "ASCII\nDATASET POLYDATA\nPOINTS {n} double")?;
+        for p in &frame.positions_m {
+            writeln!(w, "{} {} {}", p[0], p[1], p[2])?;
+        }
+        writeln!(w, "VERTICES {n} {}", 2 * n)?;
+        for i in 0..n {
+            writeln!(w, "1 {i}")?;
+        }
+        writeln!(
+            w,
+            "POINT_DATA {n}\nSCALARS radius_m double 1\nLOOKUP_TABLE default"
+        )?;
+        for r in &frame.radii_m {
+            writeln!(w, "{r}")?;
+        }
+        writeln!(w, "SCALARS body_id int 1\nLOOKUP_TABLE default")?;
+        for id in &frame.body_ids {
+            writeln!(w, "{id}")?;
+        }
+        writeln!(w, "VECTORS velocity_m_s double")?;
+        for v in &frame.velocities_m_s {
+            writeln!(w, "{} {} {}", v[0], v[1], v[2])?;
+        }
+        Ok(())
+    })
+    .with_context(|| format!("cannot write VTK frame {}", path.display()))
+}
+
+/// Writes `frames` into `dir` as `frame_NNNNNN.vtk` plus `particles.pvd`, a ParaView
+/// collection that maps each file to its simulated time. Returns the `.pvd` path.
+pub fn write_series(dir: &Path, frames: &[ParticleFrame]) -> anyhow::Result<PathBuf> {
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("cannot create VTK directory {}", dir.display()))?;
+    let mut names = Vec::with_capacity(frames.len());
+    for (i, frame) in frames.iter().enumerate() {
+        let name = format!("frame_{i:06}.vtk");
+        write_frame(&dir.join(&name), frame)?;
+        names.push(name);
+    }
+    let pvd = dir.join("particles.pvd");
+    write_atomic(&pvd, |w| {
+        writeln!(w, "<?xml version=\"1.0\"?>")?;
+        writeln!(
+            w,
+            "<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>"
+        )?;
+        for (frame, name) in frames.iter().zip(&names) {
+            writeln!(
+                w,
+                "<DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{name}\"/>",
+                frame.time_s
+            )?;
+        }
+        writeln!(w, "</Collection>\n</VTKFile>")?;
+        Ok(())
+    })?;
+    Ok(pvd)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn two_spheres(time_s: f64) -> ParticleFrame {
+        ParticleFrame {
+            time_s,
+            positions_m: vec![[0.0, 0.0, 0.004], [0.01, 0.0, 0.004]],
+            radii_m: vec![0.004, 0.003],
+            velocities_m_s: vec![[0.0, 0.0, 0.0], [0.0, 0.0, -0.2]],
+            body_ids: vec![0, 1],
+        }
+    }
+
+    #[test]
+    fn frame_sections_have_consistent_counts() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("f.vtk");
+        write_frame(&path, &two_spheres(0.5)).unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        let points = lines.iter().position(|l| *l == "POINTS 2 double").unwrap();
+        assert_eq!(lines[points + 1], "0 0 0.004");
+        assert_eq!(lines[points + 3], "VERTICES 2 4");
+        assert!(text.contains("SCALARS radius_m double 1\nLOOKUP_TABLE default\n0.004\n0.003\n"));
+        assert!(text.ends_with("VECTORS velocity_m_s double\n0 0 0\n0 0 -0.2\n"));
+    }
+
+    #[test]
+    fn mismatched_arrays_are_an_error_and_write_nothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("f.vtk");
+        let mut frame = two_spheres(0.0);
+        frame.radii_m.pop();
+        assert!(write_frame(&path, &frame).is_err());
+        assert!(!path.exists());
+    }
+
+    #[test]
+    fn series_lists_every_frame_with_its_time() {
+        let dir = tempfile::tempdir().unwrap();
+        let pvd = write_series(dir.path(), &[two_spheres(0.0), two_spheres(0.25)]).unwrap();
+        let text = std::fs::read_to_string(pvd).unwrap();
+        assert!(text.contains("timestep=\"0.25\" group=\"\" part=\"0\" file=\"frame_000001.vtk\""));
+        assert!(dir.path().join("frame_000001.vtk").exists());
+    }
+}
