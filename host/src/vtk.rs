@@ -22,7 +22,6 @@
 //! assert!(std::fs::read_to_string(&path).unwrap().contains("POINTS 1 double"));
 //! ```
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{ensure, Context};
