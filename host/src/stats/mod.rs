@@ -9,6 +9,7 @@
 mod anova;
 mod coded_design;
 pub mod curvature;
+pub mod design_table;
 mod error;
 mod fit_statistics;
 pub mod lack_of_fit;
@@ -20,6 +21,7 @@ mod t_test;
 
 pub use anova::{analyze, predict, Anova, Coefficient, ErrorSource, TermRow, TestedSource};
 pub use coded_design::{CodedDesign, FactorLevels};
+pub use design_table::{read_design_table, DesignTable};
 pub use error::StatsError;
 pub use fit_statistics::{fit_statistics, press, FitInputs, FitStatistics};
 pub use least_squares::{least_squares, residual_sum_of_squares, LeastSquaresFit};
