@@ -24,7 +24,10 @@ fn seed_001_table_12_relative_errors() {
     let printed = [6.93, 4.73, 5.39, 7.55];
     for ((sim, field), want) in SIMULATION.iter().zip(FIELD).zip(printed) {
         let got = relative_error_percent(field, *sim);
-        assert!((got - want).abs() <= 0.005, "{sim} vs {field}: {got} ≠ {want}");
+        assert!(
+            (got - want).abs() <= 0.005,
+            "{sim} vs {field}: {got} ≠ {want}"
+        );
     }
 }
 
@@ -39,8 +42,12 @@ fn textbook_portland_cement_mortar() {
     // Montgomery, Design and Analysis of Experiments, Table 2.1: tension bond strength
     // (kgf/cm²) of modified and unmodified mortar. Printed: t0 = −2.19 (software output),
     // 18 df, P = 0.042.
-    let modified = [16.85, 16.40, 17.21, 16.35, 16.52, 17.04, 16.96, 17.15, 16.59, 16.57];
-    let unmodified = [16.62, 16.75, 17.37, 17.12, 16.98, 16.87, 17.34, 17.02, 17.08, 17.27];
+    let modified = [
+        16.85, 16.40, 17.21, 16.35, 16.52, 17.04, 16.96, 17.15, 16.59, 16.57,
+    ];
+    let unmodified = [
+        16.62, 16.75, 17.37, 17.12, 16.98, 16.87, 17.34, 17.02, 17.08, 17.27,
+    ];
     let test = pooled_t_test(&modified, &unmodified).unwrap();
     assert_eq!(test.df, 18);
     assert!((test.t + 2.19).abs() <= 0.005, "t = {}", test.t);
