@@ -21,7 +21,7 @@
 //! assert_eq!(anova.residual.df, 3);
 //! ```
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DVector;
 use serde::Serialize;
 
 use super::curvature::centre_point_indicator;
@@ -95,6 +95,9 @@ pub struct Anova {
     /// The model fitted.
     #[serde(skip)]
     pub order: ModelOrder,
+    /// Factor names in column order (the coded equation's variables).
+    #[serde(skip)]
+    pub factor_names: Vec<String>,
     /// Model term rows, intercept excluded, in Design-Expert's order.
     pub terms: Vec<TermRow>,
     /// The model as a whole.
@@ -230,6 +233,7 @@ pub fn analyze(design: &CodedDesign, order: ModelOrder) -> Result<Anova, StatsEr
 
     Ok(Anova {
         order,
+        factor_names: design.factor_names.clone(),
         terms: term_rows,
         model,
         curvature,
@@ -250,14 +254,56 @@ pub fn analyze(design: &CodedDesign, order: ModelOrder) -> Result<Anova, StatsEr
     })
 }
 
-/// Predicted response at coded settings `x` from the coded equation of `anova`.
-pub fn predict(anova: &Anova, factor_names: &[String], x: &[f64]) -> f64 {
-    let terms = model_terms(factor_names, anova.order);
-    let row = model_matrix(&terms, &[x.to_vec()]);
-    let b = DMatrix::from_iterator(
-        anova.coefficients.len(),
-        1,
-        anova.coefficients.iter().map(|c| c.estimate),
-    );
-    (row * b)[(0, 0)]
+impl Anova {
+    /// Predicted response (response units) at coded settings `x` (one value per factor, in
+    /// column order) from the coded equation.
+    pub fn predict(&self, x: &[f64]) -> f64 {
+        let terms = model_terms(&self.factor_names, self.order);
+        terms
+            .iter()
+            .zip(&self.coefficients)
+            .map(|(t, c)| c.estimate * t.value(x))
+            .sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn two_squared(y: Vec<f64>) -> CodedDesign {
+        let runs = vec![
+            vec![-1.0, -1.0],
+            vec![1.0, -1.0],
+            vec![-1.0, 1.0],
+            vec![1.0, 1.0],
+            vec![-1.0, -1.0],
+        ];
+        CodedDesign::new(vec!["A".into(), "B".into()], runs, y).unwrap()
+    }
+
+    #[test]
+    fn exact_fit_is_an_error_not_infinite_f() {
+        let design = two_squared(vec![1.0, 3.0, 2.0, 4.0, 1.0]); // y = 2.5 + A + 0.5B
+        assert_eq!(
+            analyze(&design, ModelOrder::Linear),
+            Err(StatsError::PerfectFit)
+        );
+    }
+
+    #[test]
+    fn prediction_reproduces_fitted_values() {
+        let design = two_squared(vec![1.1, 3.0, 2.2, 4.1, 0.9]);
+        let anova = analyze(&design, ModelOrder::TwoFactorInteraction).unwrap();
+        let terms = model_terms(&design.factor_names, ModelOrder::TwoFactorInteraction);
+        let x = model_matrix(&terms, &design.runs);
+        let names: Vec<&str> = terms.iter().map(|t| t.name.as_str()).collect();
+        let y = DVector::from_column_slice(&design.response);
+        let fit = least_squares(&x, &y, &names).unwrap();
+        for (run, fitted) in design.runs.iter().zip(fit.fitted.iter()) {
+            assert!((anova.predict(run) - fitted).abs() < 1e-12);
+        }
+        // The replicated corner is fitted by its mean, (1.1 + 0.9)/2, under the 2FI model.
+        assert!((anova.predict(&[-1.0, -1.0]) - 1.0).abs() < 1e-12);
+    }
 }

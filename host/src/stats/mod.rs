@@ -19,7 +19,7 @@ pub mod p_values;
 pub mod report;
 mod t_test;
 
-pub use anova::{analyze, predict, Anova, Coefficient, ErrorSource, TermRow, TestedSource};
+pub use anova::{analyze, Anova, Coefficient, ErrorSource, TermRow, TestedSource};
 pub use coded_design::{CodedDesign, FactorLevels};
 pub use design_table::{read_design_table, DesignTable};
 pub use error::StatsError;
