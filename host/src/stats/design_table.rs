@@ -2,8 +2,8 @@
 //! response columns, codes actual levels, and rejects what cannot be analysed with a message
 //! naming the file, and where it applies the line and the column.
 //!
-//! Factor columns are those named, or by default every column left of the response except
-//! `run`. A factor without levels must already be coded: its values must be symmetric about
+//! Factor columns are those named (taken in the file's column order, which fixes term
+//! names such as `A*B`), or by default every column left of the response except `run`. A factor without levels must already be coded: its values must be symmetric about
 //! zero (coded designs always are), otherwise it is reported as needing `--levels`.
 
 use anyhow::{bail, Context};
@@ -34,7 +34,16 @@ pub fn read_design_table(
     let path = table.path.display();
     let response_index = table.column_index(response)?;
     let factor_names: Vec<String> = match factors {
-        Some(names) => names.to_vec(),
+        Some(names) => {
+            // Terms are named with factors in column order (the naming contract).
+            let mut indexed = names
+                .iter()
+                .map(|n| Ok((table.column_index(n)?, n.clone())))
+                .collect::<Result<Vec<_>, InputError>>()?;
+            indexed.sort();
+            indexed.dedup();
+            indexed.into_iter().map(|(_, n)| n).collect()
+        }
         None => table.headers[..response_index]
             .iter()
             .filter(|h| !h.eq_ignore_ascii_case(RUN_COLUMN))
@@ -170,5 +179,13 @@ mod tests {
         let l = FactorLevels::with_printed_centre(0.327, 0.334, 0.340).unwrap();
         let err = read_design_table(&t, "y", None, &[("A".into(), l)]).unwrap_err();
         assert!(err.to_string().starts_with("d.csv:3: column 'A'"), "{err}");
+    }
+
+    #[test]
+    fn named_factors_follow_column_order() {
+        let t = table("B,A,y,z\n-1,-1,1,9\n1,-1,2,9\n-1,1,3,9\n1,1,5,9\n");
+        let names = ["A".to_owned(), "B".to_owned()];
+        let d = read_design_table(&t, "z", Some(&names), &[]).unwrap();
+        assert_eq!(d.design.factor_names, ["B", "A"]);
     }
 }

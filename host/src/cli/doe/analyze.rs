@@ -3,7 +3,7 @@
 //!
 //! Factor columns may be coded, or actual with their levels given by `--levels`:
 //! `NAME=LOW:HIGH` codes linearly, (x − centre)/half-range; `NAME=LOW:CENTRE:HIGH` or
-//! `NAME=−ALPHA_LEVEL:LOW:CENTRE:HIGH:+ALPHA_LEVEL` takes a coding table as a paper prints
+//! `NAME=AXIAL_LOW:LOW:CENTRE:HIGH:AXIAL_HIGH` takes a coding table as a paper prints
 //! it (levels code to −1, 0, +1 and ±α exactly, see `--alpha`).
 
 use std::io::Write;
@@ -27,13 +27,13 @@ pub struct Args {
     /// Model to fit.
     #[arg(long, value_enum)]
     pub model: ModelArg,
-    /// Factor columns, comma-separated, in the order terms are named
+    /// Factor columns, comma-separated; terms follow the columns' order in the file
     /// [default: every column left of the response except `run`].
     #[arg(long, value_delimiter = ',')]
     pub factors: Option<Vec<String>>,
     /// Actual levels of factors given in actual units, comma-separated:
-    /// NAME=LOW:HIGH, NAME=LOW:CENTRE:HIGH, or NAME=-A:LOW:CENTRE:HIGH:+A (printed tables).
-    /// Factors not listed must be coded.
+    /// NAME=LOW:HIGH (coded linearly), or a printed coding table NAME=LOW:CENTRE:HIGH or
+    /// NAME=AXIAL_LOW:LOW:CENTRE:HIGH:AXIAL_HIGH. Factors not listed must be coded.
     #[arg(long, value_delimiter = ',')]
     pub levels: Vec<String>,
     /// Coded axial distance α for five-level tables [default: the printed ratio
