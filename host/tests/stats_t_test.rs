@@ -59,3 +59,28 @@ fn degenerate_samples_are_errors() {
     assert!(pooled_t_test(&[1.0], &[1.0, 2.0]).is_err());
     assert!(pooled_t_test(&[1.0, 1.0], &[2.0, 2.0]).is_err());
 }
+
+#[test]
+fn seed_000_tables_6_and_8_relative_error_columns() {
+    // Every printed ψ in seed 000 Tables 6 and 8 is eq. (21) against the bench angle 31.06°
+    // (seed 000 §3.6.1), to half a unit in its last printed digit (0.005 %).
+    const BENCH_ANGLE_DEG: f64 = 31.06;
+    for file in [
+        "seed000_table6_steepest_ascent.csv",
+        "seed000_table8_box_behnken.csv",
+    ] {
+        let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("../testdata/seed-tables")
+            .join(file);
+        let table = arachis::io::CsvTable::read(&path).unwrap();
+        let angles = table.f64_column("angle_deg").unwrap();
+        let printed = table.f64_column("rel_error_pct").unwrap();
+        for (angle, psi) in angles.iter().zip(printed) {
+            let got = relative_error_percent(*angle, BENCH_ANGLE_DEG);
+            assert!(
+                (got - psi).abs() <= 0.005,
+                "{file}: ζ = {angle}: ψ {got} ≠ printed {psi}"
+            );
+        }
+    }
+}
