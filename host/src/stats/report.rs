@@ -9,27 +9,34 @@ use super::{Anova, TestedSource};
 /// default).
 pub const SIGNIFICANCE_LEVEL: f64 = 0.05;
 
-/// Significant digits shown, as Design-Expert shows them.
-const SIGNIFICANT_DIGITS: usize = 4;
+/// Values of at least this magnitude print with [`LARGE_DECIMALS`] decimals.
+const LARGE_THRESHOLD: f64 = 1.0;
+/// Decimals for values of magnitude ≥ 1 ("55.67", "192.84" in seed 001 Table 7).
+const LARGE_DECIMALS: usize = 2;
+/// Values of at least this magnitude (and below 1) print with [`SMALL_DECIMALS`] decimals.
+const SMALL_THRESHOLD: f64 = 1e-3;
+/// Decimals for values in [0.001, 1) ("0.8216", "0.0018" in seed 001 Tables 7 and 11).
+const SMALL_DECIMALS: usize = 4;
+/// Mantissa decimals in scientific notation below 0.001 ("3.04E-004" in seed 000 Table 9).
+const SCIENTIFIC_DECIMALS: usize = 2;
 
 /// p-values below this print as "< 0.0001".
 const SMALLEST_PRINTED_P: f64 = 1e-4;
 
-/// `value` with [`SIGNIFICANT_DIGITS`] significant digits; scientific notation for very
-/// small or large magnitudes.
-pub fn format_significant(value: f64) -> String {
+/// `value` the way Design-Expert's ANOVA prints it (and the seeds copy it): two decimals
+/// from 1 up, four decimals below 1, scientific notation below 0.001.
+pub fn format_number(value: f64) -> String {
     if !value.is_finite() {
         return "N/A".to_owned();
     }
-    if value == 0.0 {
-        return "0".to_owned();
+    let magnitude = value.abs();
+    if magnitude >= LARGE_THRESHOLD {
+        format!("{value:.LARGE_DECIMALS$}")
+    } else if magnitude >= SMALL_THRESHOLD || magnitude == 0.0 {
+        format!("{value:.SMALL_DECIMALS$}")
+    } else {
+        format!("{value:.SCIENTIFIC_DECIMALS$E}")
     }
-    let magnitude = value.abs().log10().floor() as i32;
-    if !(-4..7).contains(&magnitude) {
-        return format!("{:.*E}", SIGNIFICANT_DIGITS - 1, value);
-    }
-    let decimals = (SIGNIFICANT_DIGITS as i32 - 1 - magnitude).max(0) as usize;
-    format!("{value:.decimals$}")
 }
 
 /// A p-value as Design-Expert prints it: four decimals, or "< 0.0001".
@@ -69,10 +76,10 @@ pub fn text_report(anova: &Anova, response: &str) -> String {
             out,
             "{:<14} {:>14} {:>4} {:>12} {:>10} {:>9}  {}",
             name,
-            format_significant(t.ss),
+            format_number(t.ss),
             t.df,
-            format_significant(t.ms),
-            format_significant(t.f),
+            format_number(t.ms),
+            format_number(t.f),
             format_p(t.p),
             if show { note(t.p) } else { "" }
         );
@@ -96,9 +103,9 @@ pub fn text_report(anova: &Anova, response: &str) -> String {
             out,
             "{:<14} {:>14} {:>4} {:>12}",
             name,
-            format_significant(ss),
+            format_number(ss),
             df,
-            ms.map(format_significant).unwrap_or_default()
+            ms.map(format_number).unwrap_or_default()
         );
     };
     let r = &anova.residual;
@@ -115,8 +122,8 @@ pub fn text_report(anova: &Anova, response: &str) -> String {
     let fit = &anova.fit;
     let _ = writeln!(out, "\nFit statistics");
     let rows = [
-        ("Std. Dev.", format_significant(fit.std_dev)),
-        ("Mean", format_significant(fit.mean)),
+        ("Std. Dev.", format_number(fit.std_dev)),
+        ("Mean", format_number(fit.mean)),
         ("C.V. %", format!("{:.2}", fit.cv_percent)),
         ("R²", format!("{:.4}", fit.r2)),
         ("Adjusted R²", format!("{:.4}", fit.adj_r2)),
@@ -144,8 +151,8 @@ pub fn text_report(anova: &Anova, response: &str) -> String {
             out,
             "{:<14} {:>12} {:>12}",
             c.term,
-            format_significant(c.estimate),
-            format_significant(c.se)
+            format_number(c.estimate),
+            format_number(c.se)
         );
     }
     let _ = writeln!(
@@ -154,7 +161,7 @@ pub fn text_report(anova: &Anova, response: &str) -> String {
     );
     for c in &anova.coefficients {
         let sign = if c.estimate < 0.0 { '-' } else { '+' };
-        let magnitude = format_significant(c.estimate.abs());
+        let magnitude = format_number(c.estimate.abs());
         if c.term == "Intercept" {
             let _ = writeln!(out, "  {sign}{magnitude}");
         } else {
@@ -170,10 +177,12 @@ mod tests {
 
     #[test]
     fn numbers_print_like_design_expert() {
-        assert_eq!(format_significant(0.82161), "0.8216");
-        assert_eq!(format_significant(13.4012), "13.40");
-        assert_eq!(format_significant(280.41), "280.4");
-        assert_eq!(format_significant(3.04e-5), "3.040E-5");
+        assert_eq!(format_number(0.82161), "0.8216");
+        assert_eq!(format_number(13.4012), "13.40");
+        assert_eq!(format_number(192.8411), "192.84");
+        assert_eq!(format_number(0.001752), "0.0018");
+        assert_eq!(format_number(-0.2617), "-0.2617");
+        assert_eq!(format_number(3.042e-4), "3.04E-4");
         assert_eq!(format_p(0.00002), "< 0.0001");
         assert_eq!(format_p(0.15891), "0.1589");
     }
