@@ -14,9 +14,12 @@ const SIGNIFICANT_DIGITS: usize = 12;
 
 /// Formats `v` with at most [`SIGNIFICANT_DIGITS`] significant digits and no trailing zeros.
 pub fn format_level(v: f64) -> String {
-    let rounded: f64 = format!("{:.*e}", SIGNIFICANT_DIGITS - 1, v)
-        .parse()
-        .unwrap_or(v);
+    format_significant(v, SIGNIFICANT_DIGITS)
+}
+
+/// Formats `v` rounded to `digits` (≥ 1) significant digits, without trailing zeros.
+pub fn format_significant(v: f64, digits: usize) -> String {
+    let rounded: f64 = format!("{:.*e}", digits.max(1) - 1, v).parse().unwrap_or(v);
     // `-0` would look like a level of its own.
     let rounded = if rounded == 0.0 { 0.0 } else { rounded };
     format!("{rounded}")
