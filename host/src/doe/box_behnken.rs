@@ -14,6 +14,11 @@
 //! Matlab's `bbdesign` and R's `rsm::bbd`; taking all pairs for 6 and 7 factors would give
 //! 60 and 84 runs instead.
 //!
+//! Within a block the varied factors run through their 2² or 2³ corners in Yates order, so
+//! for 3 factors the standard order is AB (−−, +−, −+, ++), AC, BC, then the centre points.
+//! For 4 and 5 factors Design-Expert may list the pairs in its orthogonal-blocking order; the
+//! set of runs is the same.
+//!
 //! Seed 000 Table 8 (3 factors, 5 centre points, 17 runs) is this design in a randomised
 //! order (`tests/doe_seed_designs.rs`).
 //!

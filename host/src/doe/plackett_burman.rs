@@ -11,6 +11,11 @@
 //! - 12 runs: `+ + − + + + − − − + −` (DESIGN §9; Plackett & Burman 1946).
 //! - 20 runs: `+ + − − + + + + − + − + − − − − + + −` (Plackett & Burman 1946).
 //!
+//! The standard order is this construction's row order; Design-Expert does not document its
+//! own "Std" numbering for Plackett–Burman designs, so no claim is made that the two agree.
+//! (Shifting the generator *down the columns* instead of along the rows gives a different
+//! set of rows on the first k columns, which does not match the seeds.)
+//!
 //! Seed 000 Table 4 (8 factors + 3 dummies) and seed 001 Table 6 (9 factors + 2 dummies,
 //! 3 centre points) are row permutations of this construction (`tests/doe_seed_designs.rs`).
 //!
