@@ -86,7 +86,7 @@ fn option_error(option: &str, reason: String) -> LabError {
 
 fn check_particle(p: Particle, side: &str) -> Result<(), LabError> {
     let (e, nu, r) = p;
-    if !(e > 0.0) {
+    if e.is_nan() || e <= 0.0 {
         return Err(option_error(
             &format!("modulus-{side}-mpa"),
             format!("must be positive, got {e}"),
@@ -98,7 +98,7 @@ fn check_particle(p: Particle, side: &str) -> Result<(), LabError> {
             format!("must be in [0, 0.5], got {nu}"),
         ));
     }
-    if !(r > 0.0) {
+    if r.is_nan() || r <= 0.0 {
         return Err(option_error(
             &format!("radius-{side}-mm"),
             format!("must be positive, got {r}"),
@@ -111,7 +111,7 @@ fn check_particle(p: Particle, side: &str) -> Result<(), LabError> {
 pub fn analyze(table: &CsvTable, options: BondOptions) -> Result<LabReport, LabError> {
     let force = positive(table, FORCE_COLUMN, "critical force")?;
     let radius = positive(table, RADIUS_COLUMN, "surface radius")?;
-    if !(options.cohesion_pa >= 0.0) {
+    if options.cohesion_pa.is_nan() || options.cohesion_pa < 0.0 {
         return Err(option_error(
             "cohesion-pa",
             format!("must not be negative, got {}", options.cohesion_pa),

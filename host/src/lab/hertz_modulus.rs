@@ -284,11 +284,13 @@ pub fn analyze(table: &CsvTable, options: HertzOptions) -> Result<LabReport, Lab
     if let Some(mu) = options.poisson {
         report.settings.push(Value::new("poisson", mu, "1"));
     }
-    report.settings.push(Value::new(
-        "k_from_table",
-        f64::from(u8::from(options.k_method == KMethod::Table)),
-        "1",
-    ));
+    report.notes.push(
+        match options.k_method {
+            KMethod::Elliptic => "K(θ) from Hertz's elliptic-integral solution",
+            KMethod::Table => "K(θ) interpolated in seed 000 Table 2",
+        }
+        .to_owned(),
+    );
     let mpa = 1.0 / PA_PER_MPA;
     report
         .quantities

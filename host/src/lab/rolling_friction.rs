@@ -28,7 +28,7 @@
 
 use super::columns::{angle_deg, has, non_negative, positive};
 use super::error::LabError;
-use super::report::{LabReport, Quantity, Value};
+use super::report::{LabReport, Quantity};
 use crate::io::CsvTable;
 
 /// Column: plate inclination α, degrees.
@@ -110,11 +110,6 @@ pub fn analyze(table: &CsvTable, options: RollingOptions) -> Result<LabReport, L
             ),
         });
     };
-    report.settings.push(Value::new(
-        "as_printed",
-        f64::from(u8::from(options.as_printed)),
-        "1",
-    ));
     report
         .quantities
         .push(Quantity::new(table, "rolling_friction", "1", &f)?);
