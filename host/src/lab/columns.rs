@@ -47,23 +47,6 @@ pub fn angle_deg(
     })
 }
 
-/// The column `name`, every value in `[low, high)`.
-pub fn in_range(
-    table: &CsvTable,
-    name: &str,
-    low: f64,
-    high: f64,
-    what: &str,
-) -> Result<Vec<f64>, InputError> {
-    table.f64_column_checked(name, |v| {
-        if (low..high).contains(&v) {
-            Ok(())
-        } else {
-            Err(format!("{what} must be in [{low}, {high}), got {v}"))
-        }
-    })
-}
-
 /// Whether the header has a column named `name`.
 pub fn has(table: &CsvTable, name: &str) -> bool {
     table.headers.iter().any(|h| h == name)

@@ -10,7 +10,7 @@
 //! assert!((g / 1e6 - 3.04).abs() < 0.005);
 //! ```
 
-use super::columns::{in_range, positive};
+use super::columns::positive;
 use super::error::LabError;
 use super::report::{LabReport, Quantity};
 use super::units::PA_PER_MPA;
@@ -32,14 +32,15 @@ pub fn shear_modulus(e_pa: f64, mu: f64) -> f64 {
 
 /// Reads Poisson's ratio column `name`, each value in [0, 0.5].
 pub fn poisson_column(table: &CsvTable, name: &str) -> Result<Vec<f64>, LabError> {
-    // in_range is half-open; nudge the top so that exactly 0.5 is accepted.
-    Ok(in_range(
-        table,
-        name,
-        0.0,
-        POISSON_MAX + f64::EPSILON,
-        "Poisson's ratio",
-    )?)
+    Ok(table.f64_column_checked(name, |mu| {
+        if (0.0..=POISSON_MAX).contains(&mu) {
+            Ok(())
+        } else {
+            Err(format!(
+                "Poisson's ratio must be in [0, {POISSON_MAX}], got {mu}"
+            ))
+        }
+    })?)
 }
 
 /// Shear modulus of every replicate in `table`.
