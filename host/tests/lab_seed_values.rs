@@ -8,6 +8,7 @@
 
 use std::f64::consts::PI;
 
+use arachis::lab::bond::critical_normal_stress;
 use arachis::lab::hertz_k::{k_elliptic, k_table, K_TABLE};
 use arachis::lab::hertz_modulus::{seed001_radii, ASAE_CONSTANT};
 use arachis::lab::shear_modulus::shear_modulus;
@@ -67,4 +68,21 @@ fn seed001_radii_of_the_table1_pod() {
     let (r, r_prime) = seed001_radii(34.27, 15.76);
     assert!((r - 7.88).abs() < 1e-12);
     assert!((r_prime - 17.194982).abs() < 1e-6);
+}
+
+#[test]
+fn seed001_table4_critical_stress_is_not_force_over_bond_area() {
+    // Seed 001 §2.4.1 says Table 4 was calculated with eqs. (26)–(28) and prints
+    // σc = 1×10^5 Pa: one significant digit, so half a unit is ±0.5×10^5 Pa. Eq. (27) with
+    // Table 3's junction force 12.74 N on the 1.1 mm bond radius gives 3.35×10^6 Pa, 33 times
+    // the printed value, so Table 4 is not that computation (DESIGN §3 lists Table 4 as the
+    // calibration's start values). On the pod's contact radius R = H/2 = 7.88 mm (Table 1)
+    // the same force gives 0.653×10^5 Pa, inside the printed digit's range: a possible
+    // reading, not a reproduction.
+    let on_bond = critical_normal_stress(12.74, 1.1e-3);
+    assert!((on_bond / 1e6 - 3.35).abs() < 0.005, "{on_bond}");
+    assert!((on_bond / 1e5 - 1.0).abs() > 0.5);
+    let on_pod = critical_normal_stress(12.74, 7.88e-3);
+    assert!((on_pod / 1e5 - 0.653).abs() < 0.0005, "{on_pod}");
+    assert!((on_pod / 1e5 - 1.0).abs() <= 0.5);
 }

@@ -29,7 +29,7 @@ use std::f64::consts::PI;
 use super::columns::positive;
 use super::error::LabError;
 use super::report::{LabReport, Quantity, Value};
-use super::units::M_PER_MM;
+use super::units::{M_PER_MM, PA_PER_MPA};
 use crate::io::CsvTable;
 
 /// Column: critical force F, N.
@@ -123,12 +123,10 @@ pub fn analyze(table: &CsvTable, options: BondOptions) -> Result<LabReport, LabE
         .map(|(f, r)| critical_normal_stress(*f, r * M_PER_MM))
         .collect();
     let mut report = LabReport::new("bond", table);
-    report.quantities.push(Quantity::new(
-        table,
-        "critical_normal_stress",
-        "Pa",
-        &sigma,
-    )?);
+    let mpa = 1.0 / PA_PER_MPA;
+    report
+        .quantities
+        .push(Quantity::new(table, "critical_normal_stress", "Pa", &sigma)?.shown_in("MPa", mpa));
     if let Some(phi) = options.friction_angle_deg {
         if !(0.0..90.0).contains(&phi) {
             return Err(option_error(
@@ -146,12 +144,9 @@ pub fn analyze(table: &CsvTable, options: BondOptions) -> Result<LabReport, LabE
             .iter()
             .map(|s| critical_tangential_stress(*s, phi.to_radians(), options.cohesion_pa))
             .collect();
-        report.quantities.push(Quantity::new(
-            table,
-            "critical_tangential_stress",
-            "Pa",
-            &tau,
-        )?);
+        report.quantities.push(
+            Quantity::new(table, "critical_tangential_stress", "Pa", &tau)?.shown_in("MPa", mpa),
+        );
     } else {
         report
             .notes

@@ -150,6 +150,13 @@ mod tests {
     }
 
     #[test]
+    fn seed000_eq10_as_printed_halves_cos_theta_for_equal_contacts() {
+        let (r, rp) = (7.88, 17.19);
+        let printed = cos_theta_seed000_as_printed(r, rp, r, rp);
+        assert!((printed - cos_theta(r, rp) / 2.0).abs() < 1e-15);
+    }
+
+    #[test]
     fn cos_theta_of_equal_radii_is_zero() {
         assert_eq!(cos_theta(7.0, 7.0), 0.0);
         assert!((cos_theta(1.0, 3.0) - 0.5).abs() < 1e-15);

@@ -251,14 +251,16 @@ pub fn analyze(table: &CsvTable, options: HertzOptions) -> Result<LabReport, Lab
     let shape_of = |i: usize, (r1, r2): (f64, f64), cols: &[&str]| {
         contact_shape(r1, r2, options.k_method).ok_or_else(|| {
             let theta = cos_theta(r1, r2).acos().to_degrees();
-            super::columns::row_error(
-                table,
-                i,
-                cols,
-                format!(
+            let reason = match options.k_method {
+                KMethod::Table => format!(
                     "θ = {theta:.2}° is outside seed 000 Table 2 (50°–85°); use --k-from elliptic"
                 ),
-            )
+                // Only θ = 0 (one radius negligible against the other) has no K.
+                KMethod::Elliptic => format!(
+                    "θ = {theta:.2}°: the radii describe a line contact, outside Hertz's point-contact solution"
+                ),
+            };
+            super::columns::row_error(table, i, cols, reason)
         })
     };
     let n = table.rows.len();
