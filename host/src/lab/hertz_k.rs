@@ -91,13 +91,17 @@ pub fn eccentricity_from_cos_theta(cos_theta: f64) -> f64 {
     let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
     for _ in 0..BISECTION_STEPS {
         let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            // Adjacent floats: stop before m rounds to 1, where 𝐊 is infinite.
+            break;
+        }
         if cos_theta_of_eccentricity(mid) < cos_theta {
             lo = mid;
         } else {
             hi = mid;
         }
     }
-    0.5 * (lo + hi)
+    lo
 }
 
 /// K(θ) from Hertz's elliptic-integral solution, for θ (rad) in (0, π/2]; `None` outside.

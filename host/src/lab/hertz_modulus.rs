@@ -197,10 +197,7 @@ fn geometry(table: &CsvTable) -> Result<Geometry, LabError> {
         let upper = l
             .iter()
             .zip(&h)
-            .map(|(l, h)| {
-                let (r, rp) = seed001_radii(l * M_PER_MM, h * M_PER_MM);
-                (r, rp)
-            })
+            .map(|(l, h)| seed001_radii(l * M_PER_MM, h * M_PER_MM))
             .collect();
         Ok(Geometry {
             upper,
