@@ -110,8 +110,10 @@ pub fn side_silhouette(
     if width.saturating_mul(height) > MAX_PIXELS {
         return Err(problem(PileProblem::TooLarge { width, height }));
     }
-    // Pixel (col, row) has its centre at u = u0 + (col + ½)·s, z = z0 − (row + ½)·s.
-    let u0 = u_min - MARGIN_PX as f64 * mm_per_px;
+    // Pixel (col, row) has its centre at u = u0 + (col + ½)·s, z = z0 − (row + ½)·s. The
+    // grid is centred on the pile, so the views from opposite sides are exact mirror
+    // images.
+    let u0 = 0.5 * (u_min + u_max) - 0.5 * width as f64 * mm_per_px;
     let z0 = z_max + MARGIN_PX as f64 * mm_per_px;
     let mut inside = vec![false; width * height];
     for &(u, z, r) in &discs {

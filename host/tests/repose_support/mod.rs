@@ -171,10 +171,15 @@ pub fn shipped_pile() -> GrayImage {
     })
 }
 
-/// Spheres with radii in `r_min..r_max` (mm) on a jittered cubic lattice (spacing
-/// `2·r_max`), kept where the centre lies under a cone of base radius `base_radius` (mm)
-/// and angle `angle_deg` standing on the plate z = 0: z ≤ (R − ρ)·tan θ, ρ the centre's
-/// distance from the axis.
+/// Fraction of the cone's volume that the spheres' volumes add up to: dense enough that
+/// the cone's surface is covered everywhere, as in a settled pile.
+pub const CONE_FILL_FRACTION: f64 = 0.8;
+
+/// Spheres with radii uniform in `r_min..r_max` (mm) whose centres are scattered uniformly
+/// at random (overlaps allowed) under a cone of base radius `base_radius` (mm) and angle
+/// `angle_deg` standing on the plate z = 0: r ≤ z ≤ (R − ρ)·tan θ, ρ the centre's distance
+/// from the axis. Random rather than lattice positions, so that no layering common to all
+/// views puts steps into the flanks.
 pub fn cone_pile(
     base_radius: f64,
     angle_deg: f64,
@@ -183,27 +188,23 @@ pub fn cone_pile(
     seed: u64,
 ) -> Vec<Sphere> {
     let mut rng = SplitMix64(seed);
-    let spacing = 2.0 * r_max;
     let tan = angle_deg.to_radians().tan();
-    let n = (base_radius / spacing).ceil() as i64;
-    let layers = (base_radius * tan / spacing).ceil() as i64 + 1;
-    let mut spheres = Vec::new();
-    for k in 0..layers {
-        for j in -n..=n {
-            for i in -n..=n {
-                let jitter = 0.15 * spacing;
-                let x = i as f64 * spacing + jitter * (2.0 * rng.unit() - 1.0);
-                let y = j as f64 * spacing + jitter * (2.0 * rng.unit() - 1.0);
-                let radius = r_min + (r_max - r_min) * rng.unit();
-                let z = radius + k as f64 * spacing + jitter * rng.unit();
-                let rho = x.hypot(y);
-                if z <= (base_radius - rho) * tan {
-                    spheres.push(Sphere {
-                        centre_mm: [x, y, z],
-                        radius_mm: radius,
-                    });
-                }
-            }
+    let height = base_radius * tan;
+    let cone_volume = std::f64::consts::PI * base_radius.powi(2) * height / 3.0;
+    let mean_r3 = (r_max.powi(4) - r_min.powi(4)) / (4.0 * (r_max - r_min));
+    let count = (CONE_FILL_FRACTION * cone_volume / (4.0 / 3.0 * std::f64::consts::PI * mean_r3))
+        .round() as usize;
+    let mut spheres = Vec::with_capacity(count);
+    while spheres.len() < count {
+        let x = base_radius * (2.0 * rng.unit() - 1.0);
+        let y = base_radius * (2.0 * rng.unit() - 1.0);
+        let z = height * rng.unit();
+        let radius = r_min + (r_max - r_min) * rng.unit();
+        if z >= radius && z <= (base_radius - x.hypot(y)) * tan {
+            spheres.push(Sphere {
+                centre_mm: [x, y, z],
+                radius_mm: radius,
+            });
         }
     }
     spheres
