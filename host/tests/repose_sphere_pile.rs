@@ -4,6 +4,7 @@
 
 mod repose_support;
 
+use arachis::repose::overlay::overlay_svg;
 use arachis::repose::{
     simulated_repose, FitBand, PileProblem, ReposeError, Sphere, BENCH_AZIMUTHS_DEG,
 };
@@ -48,7 +49,7 @@ fn sphere_cones_of_25_31_and_38_degrees() {
         let views: Vec<String> = m
             .views
             .iter()
-            .map(|(az, a)| format!("{az}°: {:.2}°", a.angle_deg))
+            .map(|v| format!("{}°: {:.2}°", v.azimuth_deg, v.angle.angle_deg))
             .collect();
         let error = m.angle_deg - angle;
         eprintln!(
@@ -60,7 +61,7 @@ fn sphere_cones_of_25_31_and_38_degrees() {
         assert_eq!(m.views.len(), BENCH_AZIMUTHS_DEG.len());
         assert!(error.abs() < TOLERANCE_DEG, "cone {angle}°: error {error}°");
         // The pile's height in mm: the cone's plus at most a sphere diameter.
-        let height_mm = m.views[0].1.height_mm.unwrap();
+        let height_mm = m.views[0].angle.height_mm.unwrap();
         let cone_height = BASE_RADIUS_MM * angle.to_radians().tan();
         assert!(
             (height_mm - cone_height).abs() < 2.0 * R_MAX_MM,
@@ -105,10 +106,11 @@ fn opposite_views_are_mirror_images() {
     let view = |azimuth: f64| {
         simulated_repose(&spheres, &[azimuth], SCALE_MM_PER_PX, FitBand::default())
             .unwrap()
-            .views[0]
-            .1
+            .views
+            .remove(0)
     };
-    let (front, back) = (view(30.0), view(210.0));
+    let (front_view, back_view) = (view(30.0), view(210.0));
+    let (front, back) = (front_view.angle, back_view.angle);
     eprintln!(
         "azimuth 30°: left {:.3}°, right {:.3}°; azimuth 210°: left {:.3}°, right {:.3}°",
         front.left.angle_deg, front.right.angle_deg, back.left.angle_deg, back.right.angle_deg
@@ -117,6 +119,9 @@ fn opposite_views_are_mirror_images() {
     // rounding of a pixel centre that falls exactly on a disc's edge).
     assert!((front.left.angle_deg - back.right.angle_deg).abs() < 1e-6);
     assert!((front.right.angle_deg - back.left.angle_deg).abs() < 1e-6);
+    // A simulated view draws like a photograph.
+    let svg = overlay_svg(&front_view.profile, &front, "azimuth 30°").unwrap();
+    assert!(svg.contains(&format!("repose angle {:.2}°", front.angle_deg)));
 }
 
 #[test]

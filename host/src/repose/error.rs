@@ -43,7 +43,8 @@ pub enum PileProblem {
     /// The pile is cut off by the frame.
     #[error(
         "the pile touches the {0} border of the image, so a flank is cut off \
-         (photograph the whole pile with a margin, or check --dark-pile/--light-pile)"
+         (photograph the whole pile with a margin above and beside it, crop the picture at the \
+         plate, or check --dark-pile/--light-pile)"
     )]
     TouchesBorder(Side),
     /// Too few contour points inside the fit band.

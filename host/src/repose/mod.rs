@@ -35,7 +35,9 @@ use std::path::Path;
 
 pub use error::{Flank, PileProblem, ReposeError};
 pub use photo::{PhotoOptions, Polarity};
-pub use pile_raster::{simulated_repose, SimulatedRepose, Sphere, BENCH_AZIMUTHS_DEG};
+pub use pile_raster::{
+    simulated_repose, SimulatedRepose, SimulatedView, Sphere, BENCH_AZIMUTHS_DEG,
+};
 pub use profile::{FitBand, FlankFit, Profile, ReposeAngle};
 pub use silhouette::Silhouette;
 

@@ -38,11 +38,11 @@ const RIGHT_LINE: RGBColor = RGBColor(30, 60, 200);
 
 /// Draws `profile` and `angle` as SVG; the caption starts with `title`.
 pub fn overlay_svg(profile: &Profile, angle: &ReposeAngle, title: &str) -> anyhow::Result<String> {
-    let x_first = profile.points.first().map_or(0.0, |p| p.0);
-    let x_last = profile.points.last().map_or(1.0, |p| p.0);
+    let x_first = profile.points().first().map_or(0.0, |p| p.0);
+    let x_last = profile.points().last().map_or(1.0, |p| p.0);
     let pad = SIDE_ROOM * (x_last - x_first).max(1.0);
     let (x_lo, x_hi) = (x_first - pad, x_last + pad);
-    let h_hi = profile.height_px.max(1.0) * (1.0 + HEAD_ROOM);
+    let h_hi = profile.height_px().max(1.0) * (1.0 + HEAD_ROOM);
     let plot_height = (f64::from(PLOT_WIDTH) * h_hi / (x_hi - x_lo)).ceil() as u32;
     let size = (
         PLOT_WIDTH + Y_LABELS + 2 * MARGIN,
@@ -78,27 +78,27 @@ pub fn overlay_svg(profile: &Profile, angle: &ReposeAngle, title: &str) -> anyho
             .draw()
             .map_err(plot_error)?;
         for fraction in [angle.band.low, angle.band.high] {
-            let h = fraction * profile.height_px;
+            let h = fraction * profile.height_px();
             chart
                 .draw_series(LineSeries::new([(x_lo, h), (x_hi, h)], BAND))
                 .map_err(plot_error)?;
         }
         chart
-            .draw_series(LineSeries::new(profile.points.iter().copied(), CONTOUR))
+            .draw_series(LineSeries::new(profile.points().iter().copied(), CONTOUR))
             .map_err(plot_error)?;
         let offset = LABEL_OFFSET * (x_hi - x_lo);
         for (flank, colour, name, anchor, shift) in [
             (&angle.left, LEFT_LINE, "left", HPos::Right, -offset),
             (&angle.right, RIGHT_LINE, "right", HPos::Left, offset),
         ] {
-            let ends = line_ends(flank, profile.height_px);
+            let ends = line_ends(flank, profile.height_px());
             chart
                 .draw_series(LineSeries::new(ends, colour.stroke_width(2)))
                 .map_err(plot_error)?;
             // The label sits outside its line, at mid-height.
             let middle = (
                 0.5 * (ends[0].0 + ends[1].0) + shift,
-                0.5 * profile.height_px,
+                0.5 * profile.height_px(),
             );
             let style = ("sans-serif", 16)
                 .into_font()

@@ -22,7 +22,7 @@
 use serde::Serialize;
 
 use super::error::{PileProblem, ReposeError};
-use super::profile::{FitBand, ReposeAngle};
+use super::profile::{FitBand, Profile, ReposeAngle};
 use super::silhouette::Silhouette;
 
 /// Four viewing azimuths (degrees) giving four distinct side views.
@@ -44,13 +44,25 @@ pub struct Sphere {
     pub radius_mm: f64,
 }
 
+/// One side view of a simulated pile.
+#[derive(Debug, Clone, Serialize)]
+pub struct SimulatedView {
+    /// Viewing azimuth φ (degrees).
+    pub azimuth_deg: f64,
+    /// The measurement (pixels; mm through the scale).
+    pub angle: ReposeAngle,
+    /// The upper contour it was fitted to (for [`super::overlay`]).
+    #[serde(skip)]
+    pub profile: Profile,
+}
+
 /// The repose angle of a simulated pile, from several side views.
 #[derive(Debug, Clone, Serialize)]
 pub struct SimulatedRepose {
     /// Mean of the views' angles (degrees).
     pub angle_deg: f64,
-    /// Each view: its azimuth (degrees) and its measurement (pixels; mm through the scale).
-    pub views: Vec<(f64, ReposeAngle)>,
+    /// Each view.
+    pub views: Vec<SimulatedView>,
 }
 
 /// The side silhouette of `spheres` seen from azimuth `azimuth_deg` (degrees, from +x
@@ -159,9 +171,14 @@ pub fn simulated_repose(
     for &azimuth in azimuths_deg {
         let name = format!("simulated pile seen from azimuth {azimuth}°");
         let silhouette = side_silhouette(spheres, azimuth, mm_per_px, &name)?;
-        let (_, angle) = super::measure_silhouette(&silhouette, band, Some(mm_per_px), &name)?;
-        views.push((azimuth, angle));
+        let (profile, angle) =
+            super::measure_silhouette(&silhouette, band, Some(mm_per_px), &name)?;
+        views.push(SimulatedView {
+            azimuth_deg: azimuth,
+            angle,
+            profile,
+        });
     }
-    let angle_deg = views.iter().map(|v| v.1.angle_deg).sum::<f64>() / views.len() as f64;
+    let angle_deg = views.iter().map(|v| v.angle.angle_deg).sum::<f64>() / views.len() as f64;
     Ok(SimulatedRepose { angle_deg, views })
 }

@@ -89,19 +89,12 @@ impl FromStr for FitBand {
     }
 }
 
-/// The upper contour of a silhouette.
+/// The upper contour of a silhouette (read-only: the apex is found once, on creation).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Profile {
-    /// One point per column holding pile, left to right: x (pixels from the image's left
-    /// edge, at the column centre) and h (pixels from the bottom of the pile's lowest row
-    /// to the top of the column's highest pile pixel).
-    pub points: Vec<(f64, f64)>,
-    /// Image row of the pile's lowest pixel (row 0 at the top).
-    pub base_row: usize,
-    /// Pile height H = max h (pixels).
-    pub height_px: f64,
-    /// x of the apex (pixels): the middle of the columns reaching H.
-    pub apex_x_px: f64,
+    points: Vec<(f64, f64)>,
+    base_row: usize,
+    height_px: f64,
     apex_first: usize,
     apex_last: usize,
 }
@@ -160,15 +153,35 @@ impl Profile {
         let height_px = points.iter().map(|p| p.1).fold(0.0, f64::max);
         let apex_first = points.iter().position(|p| p.1 == height_px)?;
         let apex_last = points.iter().rposition(|p| p.1 == height_px)?;
-        let apex_x_px = 0.5 * (points[apex_first].0 + points[apex_last].0);
         Some(Profile {
             points,
             base_row,
             height_px,
-            apex_x_px,
             apex_first,
             apex_last,
         })
+    }
+
+    /// One point per column holding pile, left to right: x (pixels from the image's left
+    /// edge, at the column centre) and h (pixels from the bottom of the pile's lowest row
+    /// to the top of the column's highest pile pixel).
+    pub fn points(&self) -> &[(f64, f64)] {
+        &self.points
+    }
+
+    /// Image row of the pile's lowest pixel (row 0 at the top).
+    pub fn base_row(&self) -> usize {
+        self.base_row
+    }
+
+    /// Pile height H = max h (pixels).
+    pub fn height_px(&self) -> f64 {
+        self.height_px
+    }
+
+    /// x of the apex (pixels): the middle of the columns reaching H.
+    pub fn apex_x_px(&self) -> f64 {
+        0.5 * (self.points[self.apex_first].0 + self.points[self.apex_last].0)
     }
 
     /// Pile width at its base (pixels): the span of columns holding pile.
@@ -201,7 +214,7 @@ impl Profile {
             band,
             height_px: self.height_px,
             width_px,
-            apex_x_px: self.apex_x_px,
+            apex_x_px: self.apex_x_px(),
             mm_per_px,
             height_mm: mm_per_px.map(|s| s * self.height_px),
             width_mm: mm_per_px.map(|s| s * width_px),
@@ -258,8 +271,8 @@ mod tests {
         // A rectangle: no flank points strictly left of the flat top.
         let s = Silhouette::from_fn(20, 10, |x, y| (4..16).contains(&x) && y >= 3);
         let p = Profile::from_silhouette(&s).unwrap();
-        assert_eq!(p.apex_x_px, 10.0);
-        assert_eq!(p.height_px, 7.0);
+        assert_eq!(p.apex_x_px(), 10.0);
+        assert_eq!(p.height_px(), 7.0);
         assert_eq!(
             p.fit(FitBand::default(), None).unwrap_err(),
             PileProblem::TooFewPoints {
