@@ -5,6 +5,7 @@
 
 pub mod doe;
 pub mod lab;
+pub mod lab_repose;
 pub mod pour;
 
 use clap::{Parser, Subcommand};
