@@ -11,24 +11,13 @@ mod repose_support;
 use std::path::PathBuf;
 
 use arachis::cli::lab_repose::{execute, Args};
-use clap::{Parser, Subcommand};
+use arachis::cli::{lab, Cli, Command};
+use clap::Parser;
 use repose_support::{shipped_pile, SHIPPED_ANGLE_DEG, SHIPPED_PNG};
 use serde_json::Value;
 
 /// The must-show tolerance (degrees).
 const TOLERANCE_DEG: f64 = 0.5;
-
-/// Stand-in for `arachis lab`, which will hold `repose` among its subcommands.
-#[derive(Debug, Parser)]
-struct Lab {
-    #[command(subcommand)]
-    command: LabCommand,
-}
-
-#[derive(Debug, Subcommand)]
-enum LabCommand {
-    Repose(Args),
-}
 
 fn shipped() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -36,17 +25,31 @@ fn shipped() -> PathBuf {
         .join(SHIPPED_PNG)
 }
 
-fn parse(args: &[&str]) -> Result<Args, clap::Error> {
-    let mut argv = vec!["lab", "repose"];
+/// Parses `arachis lab repose ARGS` with the real command line; returns the repose
+/// arguments and the lab-wide `--json` flag.
+fn parse(args: &[&str]) -> anyhow::Result<(Args, bool)> {
+    let mut argv = vec!["arachis", "lab", "repose"];
     argv.extend_from_slice(args);
-    Lab::try_parse_from(argv).map(|lab| match lab.command {
-        LabCommand::Repose(a) => a,
-    })
+    match Cli::try_parse_from(argv)?.command {
+        Command::Lab(lab::Args {
+            test: lab::LabTest::Repose(a),
+            json,
+        }) => Ok((a, json)),
+        other => anyhow::bail!("parsed as another command: {other:?}"),
+    }
+}
+
+/// The kind of a command-line parse error.
+fn clap_kind(err: anyhow::Error) -> clap::error::ErrorKind {
+    err.downcast::<clap::Error>()
+        .expect("a command-line parse error")
+        .kind()
 }
 
 fn run(args: &[&str]) -> anyhow::Result<String> {
+    let (args, json) = parse(args)?;
     let mut out = Vec::new();
-    execute(parse(args)?, &mut out)?;
+    execute(args, json, &mut out)?;
     Ok(String::from_utf8(out)?)
 }
 
@@ -124,13 +127,19 @@ fn bad_arguments_and_files_are_clear_errors() {
     let file = shipped();
     let path = file.to_str().unwrap();
     let conflict = parse(&[path, "--dark-pile", "--light-pile"]).unwrap_err();
-    assert_eq!(conflict.kind(), clap::error::ErrorKind::ArgumentConflict);
+    assert_eq!(
+        clap_kind(conflict),
+        clap::error::ErrorKind::ArgumentConflict
+    );
     let band = parse(&[path, "--fit-band", "0.9:0.1"])
         .unwrap_err()
         .to_string();
     assert!(band.contains("low < high"), "{band}");
     let threshold = parse(&[path, "--threshold", "300"]).unwrap_err();
-    assert_eq!(threshold.kind(), clap::error::ErrorKind::ValueValidation);
+    assert_eq!(
+        clap_kind(threshold),
+        clap::error::ErrorKind::ValueValidation
+    );
 
     // A missing photograph: the error names it, and no SVG is left behind.
     let dir = tempfile::tempdir().unwrap();

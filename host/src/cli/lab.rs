@@ -21,7 +21,7 @@ use crate::lab::{
 pub struct Args {
     /// The bench test to analyse.
     #[command(subcommand)]
-    pub test: Test,
+    pub test: LabTest,
     /// Print one JSON object (SI units) instead of the table.
     #[arg(long, global = true)]
     pub json: bool,
@@ -101,7 +101,17 @@ pub struct BondArgs {
     pub radius_b_mm: Option<f64>,
 }
 
-/// The bench tests.
+/// The `lab` subcommands: the CSV analyses, and the repose angle from a photograph.
+#[derive(Debug, Subcommand)]
+pub enum LabTest {
+    /// A bench test whose replicates come as a CSV file.
+    #[command(flatten)]
+    Csv(Test),
+    /// Repose (stacking) angle from a side photograph of a pile (seed 000 §3.6.1).
+    Repose(super::lab_repose::Args),
+}
+
+/// The bench tests analysed from a CSV file of replicates.
 #[derive(Debug, Subcommand)]
 pub enum Test {
     /// Density by displacement, ρ = m/ΔV (seed 000 §2.5.1).
@@ -223,7 +233,11 @@ pub fn analyze(test: Test) -> anyhow::Result<LabReport> {
 
 /// Runs `arachis lab`: prints the table, or one JSON object with `--json`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let report = analyze(args.test)?;
+    let test = match args.test {
+        LabTest::Csv(test) => test,
+        LabTest::Repose(photo) => return super::lab_repose::run(photo, args.json),
+    };
+    let report = analyze(test)?;
     let text = if args.json {
         format!("{}\n", serde_json::to_string(&report)?)
     } else {

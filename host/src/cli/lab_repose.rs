@@ -35,9 +35,6 @@ pub struct Args {
     /// Write the contour with the fitted lines to this SVG file.
     #[arg(long, value_name = "OUT.svg")]
     pub svg: Option<PathBuf>,
-    /// Print one JSON object instead of text.
-    #[arg(long)]
-    pub json: bool,
 }
 
 /// The JSON output.
@@ -51,13 +48,14 @@ struct Report<'a> {
     angle: &'a ReposeAngle,
 }
 
-/// Runs `arachis lab repose`, printing to standard output.
-pub fn run(args: Args) -> anyhow::Result<()> {
-    execute(args, &mut std::io::stdout().lock())
+/// Runs `arachis lab repose`, printing to standard output (one JSON object when `json`; the
+/// flag is `arachis lab --json`, shared by every lab test).
+pub fn run(args: Args, json: bool) -> anyhow::Result<()> {
+    execute(args, json, &mut std::io::stdout().lock())
 }
 
 /// Runs `arachis lab repose`, printing to `out`.
-pub fn execute(args: Args, out: &mut dyn Write) -> anyhow::Result<()> {
+pub fn execute(args: Args, json: bool, out: &mut dyn Write) -> anyhow::Result<()> {
     let polarity = match (args.dark_pile, args.light_pile) {
         (true, _) => Polarity::DarkPile,
         (_, true) => Polarity::LightPile,
@@ -76,7 +74,7 @@ pub fn execute(args: Args, out: &mut dyn Write) -> anyhow::Result<()> {
         write_overlay_svg(svg, &m.profile, &m.angle, &title)?;
     }
     let a = &m.angle;
-    if args.json {
+    if json {
         let report = Report {
             photo: args.photo.display().to_string(),
             threshold: m.threshold,
