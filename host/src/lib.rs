@@ -10,4 +10,5 @@ pub mod io;
 pub mod lab;
 pub mod optimize;
 pub mod stats;
+pub mod study;
 pub mod vtk;
