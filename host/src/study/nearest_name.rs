@@ -1,9 +1,9 @@
 //! "Did you mean …?" for misspelt names: the known name at the smallest edit distance.
 //!
-//! Levenshtein distance (insertions, deletions, substitutions, each costing 1), computed
-//! with the usual two-row dynamic programme over characters. A suggestion is offered only
-//! when the distance is at most a third of the longer name, so unrelated names are not
-//! suggested.
+//! The distance is the optimal-string-alignment edit distance (insertions, deletions,
+//! substitutions and swaps of adjacent characters, each costing 1, so `plna` is one edit
+//! from `plan`). A suggestion is offered only when the distance is at most a third of the
+//! longer name, so unrelated names are not suggested.
 //!
 //! ```
 //! use arachis::study::nearest_name;
@@ -23,18 +23,30 @@ pub fn nearest_name<'a>(name: &str, known: &[&'a str]) -> Option<&'a str> {
         .map(|(_, k)| k)
 }
 
-/// Levenshtein distance between `a` and `b`, in characters.
+/// Edit distance between `a` and `b` in characters: insertions, deletions, substitutions
+/// and swaps of two adjacent characters each cost 1 (optimal string alignment distance).
 pub fn edit_distance(a: &str, b: &str) -> usize {
+    let a: Vec<char> = a.chars().collect();
     let b: Vec<char> = b.chars().collect();
-    let mut previous: Vec<usize> = (0..=b.len()).collect();
-    let mut current = vec![0; b.len() + 1];
-    for (i, ca) in a.chars().enumerate() {
-        current[0] = i + 1;
-        for (j, cb) in b.iter().enumerate() {
-            let substitution = previous[j] + usize::from(ca != *cb);
-            current[j + 1] = substitution.min(previous[j + 1] + 1).min(current[j] + 1);
-        }
-        std::mem::swap(&mut previous, &mut current);
+    // d[i][j]: distance between the first i chars of a and the first j chars of b.
+    let mut d = vec![vec![0usize; b.len() + 1]; a.len() + 1];
+    for (i, row) in d.iter_mut().enumerate() {
+        row[0] = i;
     }
-    previous[b.len()]
+    for (j, cell) in d[0].iter_mut().enumerate() {
+        *cell = j;
+    }
+    for i in 1..=a.len() {
+        for j in 1..=b.len() {
+            let cost = usize::from(a[i - 1] != b[j - 1]);
+            let mut best = (d[i - 1][j] + 1)
+                .min(d[i][j - 1] + 1)
+                .min(d[i - 1][j - 1] + cost);
+            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                best = best.min(d[i - 2][j - 2] + 1);
+            }
+            d[i][j] = best;
+        }
+    }
+    d[a.len()][b.len()]
 }

@@ -16,6 +16,7 @@ use toml::Spanned;
 
 use super::error::StudyError;
 use super::key_path::{KeyPath, Segment};
+use super::nearest_name::nearest_name;
 
 /// A parsed study file: its name for messages, its text, and its spanned document tree.
 pub(crate) struct Source<'i> {
@@ -206,7 +207,20 @@ fn floor_char_boundary(text: &str, mut offset: usize) -> usize {
 fn explain_serde(message: &str) -> String {
     let m = message.trim();
     if let Some(rest) = m.strip_prefix("unknown field ") {
+        // serde writes: unknown field `x`, expected one of `a`, `b` (or: expected `a`).
+        let quoted: Vec<&str> = rest.split('`').skip(1).step_by(2).collect();
+        if let Some((name, expected)) = quoted.split_first() {
+            let hint = nearest_name(name, expected)
+                .map_or(String::new(), |n| format!("; did you mean '{n}'?"));
+            return format!(
+                "unknown key '{name}'{hint} (accepted: {})",
+                expected.join(", ")
+            );
+        }
         return format!("unknown key {rest}");
+    }
+    if let Some(rest) = m.strip_prefix("unknown variant ") {
+        return format!("unknown value {rest}");
     }
     if let Some(rest) = m.strip_prefix("missing field ") {
         return format!("missing key {rest}");

@@ -118,7 +118,10 @@ impl Validator<'_, '_> {
         if sum.is_finite() && (sum - 1.0).abs() > SHAPE_MIX_TOLERANCE {
             self.fail(
                 &mix,
-                format!("the fractions normal + cocoon + single_grain sum to {sum}, not 1"),
+                format!(
+                    "the fractions normal + cocoon + single_grain sum to {}, not 1",
+                    round_for_message(sum)
+                ),
             );
         }
         for (shape, written) in p.stl.entries() {
@@ -607,4 +610,10 @@ fn describe(condition: &BTreeMap<String, f64>) -> String {
         .map(|(k, v)| format!("{k} = {v}"))
         .collect();
     format!(" at {}", parts.join(", "))
+}
+
+/// `x` without the binary-rounding tail (0.7 + 0.2 + 0.2 prints 1.1, not 1.0999999999999999).
+fn round_for_message(x: f64) -> f64 {
+    const DIGITS: f64 = 1e9;
+    (x * DIGITS).round() / DIGITS
 }
