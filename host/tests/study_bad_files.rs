@@ -272,6 +272,14 @@ fn every_independent_error_is_reported_at_once() {
         let e = at(&errors, key);
         assert!(e.reason.contains(reason), "{e}");
     }
+    // The misspelt x4 is reported once, not again as a missing pod-pod static friction.
+    assert!(
+        !errors
+            .errors()
+            .iter()
+            .any(|e| e.reason.contains("no static_friction")),
+        "{errors}"
+    );
     // Sorted top to bottom for the reader.
     let lines: Vec<usize> = errors
         .errors()
@@ -281,7 +289,7 @@ fn every_independent_error_is_reported_at_once() {
     assert!(lines.windows(2).all(|w| w[0] <= w[1]), "{lines:?}");
     assert!(errors
         .to_string()
-        .starts_with("study rejected before any simulation: 7 errors"));
+        .starts_with("study rejected before any simulation: 6 errors"));
 }
 
 #[test]

@@ -296,4 +296,46 @@ fn stl_files_binary_and_ascii_pass_and_bad_sizes_fail() {
     let study_path = dir.path().join("study.toml");
     let study = Study::from_toml(&text, &study_path).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(study.stl_paths()[0], ("normal", dir.path().join("pod.stl")));
+
+    // A re-scanned pod under the same file name is a different run.
+    let none = std::collections::BTreeMap::new();
+    let spec = |s: &Study| {
+        s.run_spec(arachis::study::Experiment::Repose, &none, &none, "quick")
+            .unwrap()
+            .spec_hash()
+    };
+    let before = spec(&study);
+    binary[0] = b'X';
+    std::fs::write(dir.path().join("pod.stl"), &binary).unwrap();
+    assert_ne!(spec(&study), before);
+}
+
+#[test]
+fn wall_material_and_contact_pairs_must_exist() {
+    expect(
+        with(&[("wall_material = \"steel\"", "wall_material = \"steal\"")]),
+        "plan.simulation.wall_material",
+        "no [materials.steal]",
+    );
+    let no_pair = with(&[("[pairs.\"pod-steel\"]\nrestitution = 0.339\nstatic_friction = 0.589\nrolling_friction = 0.159\n", "")]);
+    expect(
+        no_pair,
+        "plan.simulation.wall_material",
+        "no contact pair [pairs.\"pod-steel\"]",
+    );
+}
+
+#[test]
+fn json_is_written_atomically_and_parses() {
+    let study = with(&[]).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("study.json");
+    study.write_json(&out).unwrap();
+    let back: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(back["study"]["study"]["name"], "bad-study");
+    // A folder that does not exist: an error, and no file appears.
+    let missing = dir.path().join("no-such-folder").join("study.json");
+    assert!(study.write_json(&missing).is_err());
+    assert!(!missing.exists());
 }

@@ -206,6 +206,11 @@ impl Study {
         serde_json::to_string_pretty(&self.export()).expect("a validated study serialises")
     }
 
+    /// Writes [`Study::to_json`] to `path` atomically (never a half-written file).
+    pub fn write_json(&self, path: &Path) -> anyhow::Result<()> {
+        crate::io::write_string_atomic(path, &self.to_json())
+    }
+
     fn export(&self) -> StudyExport<'_> {
         let target = self.target();
         let validation = self.validation();

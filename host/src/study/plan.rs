@@ -182,6 +182,9 @@ pub struct Simulation {
     pub gravity_m_s2: f64,
     /// Seed of the pseudo-random pod placement and orientation.
     pub random_seed: u64,
+    /// Material of the cylinder, floor and plates (a `[materials]` key; seed 000 §2.4:
+    /// 65Mn steel).
+    pub wall_material: String,
     /// The repose (cylinder-lifting) experiment.
     pub repose: ReposeSettings,
 }

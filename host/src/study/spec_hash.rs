@@ -93,8 +93,18 @@ pub struct RunPods {
     pub thickness_mm: f64,
     /// Shape fractions.
     pub shape_mix: ShapeMix,
-    /// Scanned shapes, as written in the study (relative paths).
-    pub stl: BTreeMap<String, String>,
+    /// Scanned shapes by shape: the path as written in the study and the FNV-1a 64 of the
+    /// file's bytes, so a re-scanned pod under the same name is a different run.
+    pub stl: BTreeMap<String, RunStl>,
+}
+
+/// A scanned shape in a run spec.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunStl {
+    /// The path as written in the study.
+    pub path: String,
+    /// FNV-1a 64 of the file's content, 16 hex digits.
+    pub content_fnv1a: String,
 }
 
 /// Everything that determines one simulation run.
@@ -255,15 +265,31 @@ impl Study {
                 width_mm: pods.width_mm,
                 thickness_mm: pods.thickness_mm,
                 shape_mix: pods.shape_mix.clone(),
-                stl: pods
-                    .stl
-                    .entries()
-                    .into_iter()
-                    .map(|(k, p)| (k.to_owned(), p.to_owned()))
-                    .collect(),
+                stl: self.run_stl()?,
             },
             mode: mode_settings,
             simulation,
         })
+    }
+}
+
+impl Study {
+    /// Each scanned shape's path and content hash (the files were checked at load; one
+    /// that has since vanished is an error here).
+    fn run_stl(&self) -> Result<BTreeMap<String, RunStl>, String> {
+        let written = self.file().pods.stl.entries();
+        self.stl_paths()
+            .into_iter()
+            .zip(written)
+            .map(|((shape, resolved), (_, path))| {
+                let bytes = std::fs::read(&resolved)
+                    .map_err(|e| format!("cannot read {}: {e}", resolved.display()))?;
+                let stl = RunStl {
+                    path: path.to_owned(),
+                    content_fnv1a: SpecHash(fnv1a_64(&bytes)).to_string(),
+                };
+                Ok((shape.to_owned(), stl))
+            })
+            .collect()
     }
 }

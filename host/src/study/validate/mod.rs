@@ -23,6 +23,7 @@ use crate::study::error::StudyError;
 use crate::study::file_format::{StudyFile, PAIR_PROPERTIES};
 use crate::study::key_path::KeyPath;
 use crate::study::limits::Limits;
+use crate::study::nearest_name::nearest_name;
 use crate::study::parameters;
 use crate::study::source::Source;
 use crate::study::stl_check::check_stl;
@@ -48,6 +49,7 @@ pub(crate) fn validate(src: &Source<'_>, file: &StudyFile, dir: &Path) -> Vec<St
     v.materials(file);
     v.pods(file, dir);
     v.pairs(file);
+    v.contacts(file);
     v.measurements(file);
     v.parameters(file);
     v.plan(file);
@@ -140,6 +142,13 @@ impl Validator<'_, '_> {
     fn pairs(&mut self, file: &StudyFile) {
         let at = KeyPath::root().key("pairs");
         let mut seen = BTreeSet::new();
+        let known = parameters::names();
+        let intended: BTreeSet<&str> = file
+            .parameters
+            .keys()
+            .filter(|n| parameters::lookup(n).is_none())
+            .filter_map(|n| nearest_name(n, &known))
+            .collect();
         for (name, pair) in &file.pairs {
             let k = at.key(name);
             match name.split_once('-') {
@@ -168,7 +177,11 @@ impl Validator<'_, '_> {
             for property in PAIR_PROPERTIES {
                 let pk = k.key(property);
                 let registered = parameters::for_property(name, property);
-                let varied = registered.is_some_and(|p| file.parameters.contains_key(p.name));
+                // A misspelt parameter name is reported once, with its suggestion; the
+                // property it meant to vary is then not reported missing as well.
+                let varied = registered.is_some_and(|p| {
+                    file.parameters.contains_key(p.name) || intended.contains(p.name)
+                });
                 match (pair.property(property), registered) {
                     (Some(value), Some(spec)) => self.limit(&pk, value, spec.limits),
                     (Some(value), None) => self.limit(&pk, value, pair_limits(property)),
@@ -182,6 +195,34 @@ impl Validator<'_, '_> {
                     ),
                     (None, None) => self.fail(&k, format!("no {property}: give a value")),
                 }
+            }
+        }
+    }
+}
+
+impl Validator<'_, '_> {
+    /// The pods touch each other and the walls, so those pairs must exist.
+    fn contacts(&mut self, file: &StudyFile) {
+        let pod = &file.pods.material;
+        let wall = &file.plan.simulation.wall_material;
+        let wall_key = KeyPath::root()
+            .key("plan")
+            .key("simulation")
+            .key("wall_material");
+        if !file.materials.contains_key(wall) {
+            self.fail(&wall_key, format!("no [materials.{wall}] in this study"));
+        }
+        for (other, key) in [
+            (pod, KeyPath::root().key("pods").key("material")),
+            (wall, wall_key),
+        ] {
+            let forward = format!("{pod}-{other}");
+            let backward = format!("{other}-{pod}");
+            if !file.pairs.contains_key(&forward) && !file.pairs.contains_key(&backward) {
+                self.fail(
+                    &key,
+                    format!("no contact pair [pairs.\"{forward}\"]: the simulation needs it"),
+                );
             }
         }
     }
