@@ -339,3 +339,27 @@ fn json_is_written_atomically_and_parses() {
     assert!(study.write_json(&missing).is_err());
     assert!(!missing.exists());
 }
+
+#[test]
+fn missing_keys_and_bad_integers_are_named() {
+    expect(
+        with(&[("low = 0.837\n", "")]),
+        "parameters.\"pod-pod.static_friction\"",
+        "missing key 'low'",
+    );
+    expect(
+        with(&[("n = 10", "n = -1")]),
+        "measurements[1].n",
+        "expected a whole number ≥ 0",
+    );
+    expect(
+        with(&[("pods = 150", "pods = 1.5")]),
+        "plan.modes.quick.pods",
+        "floating point '1.5'",
+    );
+    expect(
+        with(&[("order = \"quadratic\"", "order = \"cubic\"")]),
+        "plan.model.order",
+        "unknown value 'cubic', expected one of 'linear'",
+    );
+}

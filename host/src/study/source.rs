@@ -220,12 +220,13 @@ fn explain_serde(message: &str) -> String {
         return format!("unknown key {rest}");
     }
     if let Some(rest) = m.strip_prefix("unknown variant ") {
-        return format!("unknown value {rest}");
+        return format!("unknown value {}", rest.replace('`', "'"));
     }
     if let Some(rest) = m.strip_prefix("missing field ") {
-        return format!("missing key {rest}");
+        return format!("missing key {}", rest.replace('`', "'"));
     }
-    m.replace("expected f64", "expected a number")
+    m.replace('`', "'")
+        .replace("expected f64", "expected a number")
         .replace("expected u32", "expected a whole number ≥ 0")
         .replace("expected u64", "expected a whole number ≥ 0")
 }
