@@ -147,7 +147,12 @@ impl Validator<'_, '_> {
             rs.settle_after_lift_s,
             Limits::NonNegative,
         );
-        if rs.lift_start_s < rs.fill_time_s {
+        if !rs.lift_start_s.is_finite() {
+            self.fail(
+                &r.key("lift_start_s"),
+                format!("{} is not a finite number", rs.lift_start_s),
+            );
+        } else if rs.lift_start_s < rs.fill_time_s {
             self.fail(
                 &r.key("lift_start_s"),
                 format!(
