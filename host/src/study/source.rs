@@ -77,27 +77,27 @@ impl<'i> Source<'i> {
     /// for a path the file does not hold in full, the span of its longest held prefix.
     pub fn span_of(&self, key: &KeyPath) -> Option<Range<usize>> {
         let mut best: Option<Range<usize>> = None;
-        let mut value: &Spanned<DeValue<'i>> = &Spanned::new(0..0, DeValue::Boolean(false));
-        let mut table: Option<&DeTable<'i>> = Some(self.doc.get_ref());
+        // The value reached so far; the root is a table with no value of its own.
+        let mut value: Option<&Spanned<DeValue<'i>>> = None;
         for segment in &key.0 {
-            match segment {
+            let next = match segment {
                 Segment::Key(k) => {
-                    let Some(t) = table else { break };
-                    let Some((name, v)) = t.get_key_value(k.as_str()) else {
-                        break;
+                    let table = match value {
+                        None => Some(self.doc.get_ref()),
+                        Some(v) => v.get_ref().as_table(),
                     };
-                    best = Some(name.span());
-                    value = v;
+                    table
+                        .and_then(|t| t.get_key_value(k.as_str()))
+                        .map(|(name, v)| (name.span(), v))
                 }
-                Segment::Index(i) => {
-                    let Some(element) = value.get_ref().as_array().and_then(|a| a.get(*i)) else {
-                        break;
-                    };
-                    best = Some(element.span());
-                    value = element;
-                }
-            }
-            table = value.get_ref().as_table();
+                Segment::Index(i) => value
+                    .and_then(|v| v.get_ref().as_array())
+                    .and_then(|a| a.get(*i))
+                    .map(|element| (element.span(), element)),
+            };
+            let Some((span, v)) = next else { break };
+            best = Some(span);
+            value = Some(v);
         }
         best
     }
