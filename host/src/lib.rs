@@ -11,4 +11,5 @@ pub mod lab;
 pub mod optimize;
 pub mod repose;
 pub mod stats;
+pub mod study;
 pub mod vtk;

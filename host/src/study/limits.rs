@@ -1,0 +1,77 @@
+//! Physical limits of material and contact properties, checked before any simulation.
+//!
+//! The bounds are those of the contact model (DESIGN §2, seed 000 eqs. (3)–(7)):
+//! - restitution e ∈ (0, 1]: β = ln e/√(ln²e + π²) needs e > 0, and e > 1 would create
+//!   energy;
+//! - friction coefficients μs, μr ≥ 0 (a Coulomb cap and a rolling torque that oppose motion);
+//! - Poisson ratio ν ∈ (−1, 0.5): the bounds for an isotropic elastic solid, where
+//!   G = E/(2(1+ν)) (seed 000 eq. (12)) stays positive and the bulk modulus finite. Seed 000
+//!   Table 3 nevertheless screens ν from 0.186 to 0.586; a range may opt in to the wider
+//!   contact-model bound (−1, 1) with `poisson_above_half = true`
+//!   ([`Limits::PoissonContactModel`]);
+//! - density, moduli, lengths, times and speeds > 0.
+
+use std::fmt;
+
+/// The admissible set of one quantity.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Limits {
+    /// Coefficient of restitution: 0 < e ≤ 1.
+    Restitution,
+    /// Friction coefficient (static or rolling): μ ≥ 0.
+    Friction,
+    /// Poisson ratio: −1 < ν < 0.5.
+    Poisson,
+    /// Poisson ratio as far as the Hertz–Mindlin terms allow: −1 < ν < 1, where 1 − ν² and
+    /// (2 − ν)(1 + ν) (DESIGN §2) stay positive. Only on explicit request
+    /// (`poisson_above_half = true`), because seed 000 Table 3 screens ν up to 0.586.
+    PoissonContactModel,
+    /// A strictly positive quantity (density, modulus, length, speed, time).
+    Positive,
+    /// A quantity that may be zero but not negative (a count of centre points, a percentage).
+    NonNegative,
+    /// A fraction in [0, 1].
+    Fraction,
+    /// A probability strictly between 0 and 1 (a significance level).
+    Probability,
+}
+
+impl Limits {
+    /// `Ok` when `value` is finite and admissible, else the reason in words.
+    pub fn check(self, value: f64) -> Result<(), String> {
+        if !value.is_finite() {
+            return Err(format!("{value} is not a finite number"));
+        }
+        let ok = match self {
+            Self::Restitution => value > 0.0 && value <= 1.0,
+            Self::Friction | Self::NonNegative => value >= 0.0,
+            Self::Poisson => value > -1.0 && value < 0.5,
+            Self::PoissonContactModel => value > -1.0 && value < 1.0,
+            Self::Positive => value > 0.0,
+            Self::Fraction => (0.0..=1.0).contains(&value),
+            Self::Probability => value > 0.0 && value < 1.0,
+        };
+        if ok {
+            Ok(())
+        } else {
+            Err(format!("{value} is outside the physical limits: {self}"))
+        }
+    }
+}
+
+impl fmt::Display for Limits {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::Restitution => "a restitution coefficient must lie in (0, 1]",
+            Self::Friction => "a friction coefficient must be ≥ 0",
+            Self::Poisson => "a Poisson ratio must lie in (−1, 0.5)",
+            Self::PoissonContactModel => {
+                "a Poisson ratio must lie in (−1, 1) for the Hertz–Mindlin terms to stay positive"
+            }
+            Self::Positive => "the value must be > 0",
+            Self::NonNegative => "the value must be ≥ 0",
+            Self::Fraction => "a fraction must lie in [0, 1]",
+            Self::Probability => "a probability must lie in (0, 1)",
+        })
+    }
+}

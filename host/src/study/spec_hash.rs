@@ -1,0 +1,295 @@
+//! A stable content hash of one fully specified simulation run, for the calibration cache
+//! (issue 4 §4: every finished run is stored under a hash of its full specification).
+//!
+//! [`RunSpec`] holds everything that can change a run's result: the experiment and its
+//! condition, every material and pair value after the run's parameter values are applied,
+//! the pod geometry, the mode (pod and sphere counts) and the simulation settings. Free-text
+//! notes (`source`) are left out, so editing a citation does not invalidate the cache.
+//!
+//! The hash is 64-bit FNV-1a (Fowler–Noll–Vo; offset basis 0xcbf29ce484222325, prime
+//! 0x100000001b3) over the canonical JSON of the spec: objects with keys sorted bytewise,
+//! no whitespace, numbers as serde_json prints them (shortest round-trip form, the same on
+//! every machine). FNV-1a is not cryptographic; it only has to tell different specs apart
+//! in a cache of thousands of runs, where a 64-bit hash collides with odds of about
+//! n²/2⁶⁵ ≈ 3e-12 at n = 10⁴. [`SPEC_FORMAT_VERSION`] is hashed too, so a change to what a
+//! spec means can retire old cache entries.
+//!
+//! ```
+//! use arachis::study::spec_hash::fnv1a_64;
+//! // Published FNV-1a test vectors.
+//! assert_eq!(fnv1a_64(b""), 0xcbf29ce484222325);
+//! assert_eq!(fnv1a_64(b"a"), 0xaf63dc4c8601ec8c);
+//! ```
+
+use std::collections::BTreeMap;
+use std::fmt;
+
+use serde::Serialize;
+use serde_json::Value;
+
+use super::file_format::ShapeMix;
+use super::measurements::Experiment;
+use super::parameters::{for_property, lookup, Owner};
+use super::plan::{Mode, Simulation};
+use super::Study;
+
+/// Version of the [`RunSpec`] layout; bump it when the meaning of a field changes.
+pub const SPEC_FORMAT_VERSION: u32 = 1;
+
+/// FNV-1a 64-bit offset basis.
+const FNV_OFFSET_BASIS: u64 = 0xcbf2_9ce4_8422_2325;
+/// FNV-1a 64-bit prime.
+const FNV_PRIME: u64 = 0x0000_0100_0000_01b3;
+
+/// 64-bit FNV-1a of `bytes`.
+pub fn fnv1a_64(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(FNV_OFFSET_BASIS, |h, b| {
+        (h ^ u64::from(*b)).wrapping_mul(FNV_PRIME)
+    })
+}
+
+/// A run's content hash; prints as 16 lower-case hex digits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct SpecHash(pub u64);
+
+impl fmt::Display for SpecHash {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{:016x}", self.0)
+    }
+}
+
+/// Material values of one run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunMaterial {
+    /// Density, kg/m³.
+    pub density_kg_m3: f64,
+    /// Poisson ratio.
+    pub poisson: f64,
+    /// Shear modulus, Pa.
+    pub shear_modulus_pa: f64,
+}
+
+/// Pair values of one run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunPair {
+    /// Coefficient of restitution.
+    pub restitution: f64,
+    /// Coefficient of static friction.
+    pub static_friction: f64,
+    /// Coefficient of rolling friction.
+    pub rolling_friction: f64,
+}
+
+/// Pod geometry of one run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunPods {
+    /// Material name.
+    pub material: String,
+    /// Length, mm.
+    pub length_mm: f64,
+    /// Width, mm.
+    pub width_mm: f64,
+    /// Thickness, mm.
+    pub thickness_mm: f64,
+    /// Shape fractions.
+    pub shape_mix: ShapeMix,
+    /// Scanned shapes by shape: the path as written in the study and the FNV-1a 64 of the
+    /// file's bytes, so a re-scanned pod under the same name is a different run.
+    pub stl: BTreeMap<String, RunStl>,
+}
+
+/// A scanned shape in a run spec.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunStl {
+    /// The path as written in the study.
+    pub path: String,
+    /// FNV-1a 64 of the file's content, 16 hex digits.
+    pub content_fnv1a: String,
+}
+
+/// Everything that determines one simulation run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunSpec {
+    /// [`SPEC_FORMAT_VERSION`].
+    pub spec_format: u32,
+    /// The experiment.
+    pub experiment: Experiment,
+    /// The measurement condition (keys unit-suffixed).
+    pub condition: BTreeMap<String, f64>,
+    /// Material values after the run's parameter values.
+    pub materials: BTreeMap<String, RunMaterial>,
+    /// Pair values after the run's parameter values.
+    pub pairs: BTreeMap<String, RunPair>,
+    /// Pod geometry.
+    pub pods: RunPods,
+    /// Mode name and sizes.
+    pub mode: Mode,
+    /// Simulation settings, with condition overrides applied.
+    pub simulation: Simulation,
+}
+
+impl RunSpec {
+    /// The canonical JSON text the hash is taken over.
+    pub fn canonical_json(&self) -> String {
+        let value = serde_json::to_value(self).expect("a run spec serialises");
+        let mut out = String::new();
+        write_canonical(&value, &mut out);
+        out
+    }
+
+    /// FNV-1a 64 of [`RunSpec::canonical_json`].
+    pub fn spec_hash(&self) -> SpecHash {
+        SpecHash(fnv1a_64(self.canonical_json().as_bytes()))
+    }
+}
+
+/// Writes `value` as JSON with object keys sorted and no whitespace, whatever the map type
+/// serde_json was built with.
+pub fn write_canonical(value: &Value, out: &mut String) {
+    match value {
+        Value::Object(map) => {
+            let mut keys: Vec<&String> = map.keys().collect();
+            keys.sort();
+            out.push('{');
+            for (i, k) in keys.into_iter().enumerate() {
+                if i > 0 {
+                    out.push(',');
+                }
+                out.push_str(&Value::String(k.clone()).to_string());
+                out.push(':');
+                write_canonical(&map[k], out);
+            }
+            out.push('}');
+        }
+        Value::Array(items) => {
+            out.push('[');
+            for (i, item) in items.iter().enumerate() {
+                if i > 0 {
+                    out.push(',');
+                }
+                write_canonical(item, out);
+            }
+            out.push(']');
+        }
+        scalar => out.push_str(&scalar.to_string()),
+    }
+}
+
+impl Study {
+    /// The full specification of one run of `experiment` at `condition`, with the
+    /// parameters in `values` (registry names → values) and every other parameter at its
+    /// held value ([`Study::held_value`]), in mode `mode`.
+    pub fn run_spec(
+        &self,
+        experiment: Experiment,
+        condition: &BTreeMap<String, f64>,
+        values: &BTreeMap<String, f64>,
+        mode: &str,
+    ) -> Result<RunSpec, String> {
+        let file = self.file();
+        let mode_settings = file
+            .plan
+            .modes
+            .get(mode)
+            .ok_or_else(|| format!("no mode '{mode}' in the study"))?
+            .clone();
+        for name in values.keys() {
+            if lookup(name).is_none() {
+                return Err(format!("unknown parameter '{name}'"));
+            }
+        }
+        let mut materials: BTreeMap<String, RunMaterial> = file
+            .materials
+            .iter()
+            .map(|(n, m)| {
+                let run = RunMaterial {
+                    density_kg_m3: m.density_kg_m3,
+                    poisson: m.poisson,
+                    shear_modulus_pa: m.shear_modulus_pa,
+                };
+                (n.clone(), run)
+            })
+            .collect();
+        let mut pairs = BTreeMap::new();
+        for name in file.pairs.keys() {
+            let get = |property: &str| -> Result<f64, String> {
+                let spec =
+                    for_property(name, property).filter(|s| matches!(s.owner, Owner::Pair(_)));
+                match spec {
+                    Some(s) => values
+                        .get(s.name)
+                        .copied()
+                        .or_else(|| self.held_value(s))
+                        .ok_or_else(|| format!("{}: no value", s.name)),
+                    None => file.pairs[name]
+                        .property(property)
+                        .ok_or_else(|| format!("pair {name}: no {property}")),
+                }
+            };
+            pairs.insert(
+                name.clone(),
+                RunPair {
+                    restitution: get("restitution")?,
+                    static_friction: get("static_friction")?,
+                    rolling_friction: get("rolling_friction")?,
+                },
+            );
+        }
+        for (name, value) in values {
+            let spec = lookup(name).expect("checked above");
+            if let Owner::Material(m) = spec.owner {
+                let mat = materials
+                    .get_mut(m)
+                    .ok_or_else(|| format!("{name}: the study has no material '{m}'"))?;
+                match spec.property {
+                    "poisson" => mat.poisson = *value,
+                    "shear_modulus_pa" => mat.shear_modulus_pa = *value,
+                    other => return Err(format!("{name}: unsupported material property {other}")),
+                }
+            }
+        }
+        let mut simulation = file.plan.simulation.clone();
+        if let Some(speed) = condition.get("lift_speed_m_s") {
+            simulation.repose.lift_speed_m_s = *speed;
+        }
+        let pods = &file.pods;
+        Ok(RunSpec {
+            spec_format: SPEC_FORMAT_VERSION,
+            experiment,
+            condition: condition.clone(),
+            materials,
+            pairs,
+            pods: RunPods {
+                material: pods.material.clone(),
+                length_mm: pods.length_mm,
+                width_mm: pods.width_mm,
+                thickness_mm: pods.thickness_mm,
+                shape_mix: pods.shape_mix.clone(),
+                stl: self.run_stl()?,
+            },
+            mode: mode_settings,
+            simulation,
+        })
+    }
+}
+
+impl Study {
+    /// Each scanned shape's path and content hash (the files were checked at load; one
+    /// that has since vanished is an error here).
+    fn run_stl(&self) -> Result<BTreeMap<String, RunStl>, String> {
+        let written = self.file().pods.stl.entries();
+        self.stl_paths()
+            .into_iter()
+            .zip(written)
+            .map(|((shape, resolved), (_, path))| {
+                let bytes = std::fs::read(&resolved)
+                    .map_err(|e| format!("cannot read {}: {e}", resolved.display()))?;
+                let stl = RunStl {
+                    path: path.to_owned(),
+                    content_fnv1a: SpecHash(fnv1a_64(&bytes)).to_string(),
+                };
+                Ok((shape.to_owned(), stl))
+            })
+            .collect()
+    }
+}

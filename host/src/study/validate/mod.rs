@@ -1,0 +1,252 @@
+//! Semantic checks of a decoded study: everything serde cannot see, all of it before any
+//! simulation starts, every failure collected.
+//!
+//! - names: materials referenced by pods and pairs exist; parameter names are in the
+//!   registry (else the nearest name is suggested) and their material or pair exists;
+//! - ranges: low < high, both within the physical limits of [`Limits`];
+//! - values: every material and pair value within its limits; every pair property has a
+//!   value or a range; shape-mix fractions sum to 1;
+//! - measurements: quantity and unit known for the experiment, condition keys known,
+//!   replicates or a summary (never both), no duplicate blocks;
+//! - plan: mode exists, the screening design has room for the factors and an error
+//!   estimate, the target and validation measurements exist and are unambiguous;
+//! - files: every STL resolves (relative to the study file), is readable and looks like STL.
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+mod measurements;
+mod plan;
+mod ranges;
+
+use crate::study::error::StudyError;
+use crate::study::file_format::{StudyFile, PAIR_PROPERTIES};
+use crate::study::key_path::KeyPath;
+use crate::study::limits::Limits;
+use crate::study::nearest_name::nearest_name;
+use crate::study::parameters;
+use crate::study::source::Source;
+use crate::study::stl_check::check_stl;
+
+/// The shape-mix fractions must sum to 1 within this (they are proportions of a count,
+/// typed with a few decimals; a larger gap is a mistake, not rounding).
+pub const SHAPE_MIX_TOLERANCE: f64 = 1e-6;
+
+/// Smallest broad-phase cell, in sphere radii: a cell must hold a whole sphere diameter so
+/// neighbour cells find every contact.
+pub const MIN_GRID_CELL_RADII: f64 = 2.0;
+
+/// Fewest replicated centre points that give a pure-error estimate (DESIGN §9).
+pub const MIN_BOX_BEHNKEN_CENTRE_POINTS: u32 = 2;
+
+/// Collects every semantic error of `file`; `dir` is the study file's directory.
+pub(crate) fn validate(src: &Source<'_>, file: &StudyFile, dir: &Path) -> Vec<StudyError> {
+    let mut v = Validator {
+        src,
+        errors: Vec::new(),
+    };
+    v.header(file);
+    v.materials(file);
+    v.pods(file, dir);
+    v.pairs(file);
+    v.contacts(file);
+    v.measurements(file);
+    v.parameters(file);
+    v.plan(file);
+    v.errors
+}
+
+struct Validator<'s, 'i> {
+    src: &'s Source<'i>,
+    errors: Vec<StudyError>,
+}
+
+impl Validator<'_, '_> {
+    fn fail(&mut self, key: &KeyPath, reason: impl Into<String>) {
+        self.errors.push(self.src.error(key, reason));
+    }
+
+    fn limit(&mut self, key: &KeyPath, value: f64, limits: Limits) {
+        if let Err(reason) = limits.check(value) {
+            self.fail(key, reason);
+        }
+    }
+
+    fn header(&mut self, file: &StudyFile) {
+        if file.study.name.trim().is_empty() {
+            self.fail(
+                &KeyPath::root().key("study").key("name"),
+                "the study needs a name",
+            );
+        }
+    }
+
+    fn materials(&mut self, file: &StudyFile) {
+        let at = KeyPath::root().key("materials");
+        if file.materials.is_empty() {
+            self.fail(&at, "no materials: add at least [materials.pod]");
+        }
+        for (name, m) in &file.materials {
+            let k = at.key(name);
+            if !is_material_name(name) {
+                self.fail(&k, "a material name may hold only lower-case letters, digits and '_' ('-' joins pair names)");
+            }
+            self.limit(&k.key("density_kg_m3"), m.density_kg_m3, Limits::Positive);
+            self.limit(&k.key("poisson"), m.poisson, Limits::Poisson);
+            self.limit(
+                &k.key("shear_modulus_pa"),
+                m.shear_modulus_pa,
+                Limits::Positive,
+            );
+        }
+    }
+
+    fn pods(&mut self, file: &StudyFile, dir: &Path) {
+        let at = KeyPath::root().key("pods");
+        let p = &file.pods;
+        if !file.materials.contains_key(&p.material) {
+            self.fail(
+                &at.key("material"),
+                format!("no [materials.{}] in this study", p.material),
+            );
+        }
+        self.limit(&at.key("length_mm"), p.length_mm, Limits::Positive);
+        self.limit(&at.key("width_mm"), p.width_mm, Limits::Positive);
+        self.limit(&at.key("thickness_mm"), p.thickness_mm, Limits::Positive);
+        let mix = at.key("shape_mix");
+        let mut sum = 0.0;
+        for (shape, fraction) in p.shape_mix.entries() {
+            self.limit(&mix.key(shape), fraction, Limits::Fraction);
+            sum += fraction;
+        }
+        if sum.is_finite() && (sum - 1.0).abs() > SHAPE_MIX_TOLERANCE {
+            self.fail(
+                &mix,
+                format!(
+                    "the fractions normal + cocoon + single_grain sum to {}, not 1",
+                    round_for_message(sum)
+                ),
+            );
+        }
+        for (shape, written) in p.stl.entries() {
+            let resolved = dir.join(written);
+            if let Err(reason) = check_stl(&resolved) {
+                self.fail(
+                    &at.key("stl").key(shape),
+                    format!("unreadable STL '{written}': {reason}"),
+                );
+            }
+        }
+    }
+
+    fn pairs(&mut self, file: &StudyFile) {
+        let at = KeyPath::root().key("pairs");
+        let mut seen = BTreeSet::new();
+        let known = parameters::names();
+        let intended: BTreeSet<&str> = file
+            .parameters
+            .keys()
+            .filter(|n| parameters::lookup(n).is_none())
+            .filter_map(|n| nearest_name(n, &known))
+            .collect();
+        for (name, pair) in &file.pairs {
+            let k = at.key(name);
+            match name.split_once('-') {
+                Some((a, b)) if is_material_name(a) && is_material_name(b) => {
+                    for m in [a, b] {
+                        if !file.materials.contains_key(m) {
+                            self.fail(
+                                &k,
+                                format!("pair names material '{m}', which has no [materials.{m}]"),
+                            );
+                        }
+                    }
+                    let unordered = if a <= b { (a, b) } else { (b, a) };
+                    if !seen.insert(unordered) {
+                        self.fail(
+                            &k,
+                            format!("the pair {b}-{a} is given twice (as {a}-{b} and {b}-{a})"),
+                        );
+                    }
+                }
+                _ => self.fail(
+                    &k,
+                    "a pair is named '<material>-<material>', e.g. \"pod-steel\"",
+                ),
+            }
+            for property in PAIR_PROPERTIES {
+                let pk = k.key(property);
+                let registered = parameters::for_property(name, property);
+                // A misspelt parameter name is reported once, with its suggestion; the
+                // property it meant to vary is then not reported missing as well.
+                let varied = registered.is_some_and(|p| {
+                    file.parameters.contains_key(p.name) || intended.contains(p.name)
+                });
+                match (pair.property(property), registered) {
+                    (Some(value), Some(spec)) => self.limit(&pk, value, spec.limits),
+                    (Some(value), None) => self.limit(&pk, value, pair_limits(property)),
+                    (None, _) if varied => {}
+                    (None, Some(spec)) => self.fail(
+                        &k,
+                        format!(
+                            "no {property}: give a value, or vary it under [parameters.\"{}\"]",
+                            spec.name
+                        ),
+                    ),
+                    (None, None) => self.fail(&k, format!("no {property}: give a value")),
+                }
+            }
+        }
+    }
+}
+
+impl Validator<'_, '_> {
+    /// The pods touch each other and the walls, so those pairs must exist.
+    fn contacts(&mut self, file: &StudyFile) {
+        let pod = &file.pods.material;
+        let wall = &file.plan.simulation.wall_material;
+        let wall_key = KeyPath::root()
+            .key("plan")
+            .key("simulation")
+            .key("wall_material");
+        if !file.materials.contains_key(wall) {
+            self.fail(&wall_key, format!("no [materials.{wall}] in this study"));
+        }
+        for (other, key) in [
+            (pod, KeyPath::root().key("pods").key("material")),
+            (wall, wall_key),
+        ] {
+            let forward = format!("{pod}-{other}");
+            let backward = format!("{other}-{pod}");
+            if !file.pairs.contains_key(&forward) && !file.pairs.contains_key(&backward) {
+                self.fail(
+                    &key,
+                    format!("no contact pair [pairs.\"{forward}\"]: the simulation needs it"),
+                );
+            }
+        }
+    }
+}
+
+/// Material names: lower-case letters, digits and '_' (so '-' can join pair names).
+fn is_material_name(name: &str) -> bool {
+    !name.is_empty()
+        && name
+            .chars()
+            .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
+}
+
+/// Limits of a pair property that has no registry entry.
+fn pair_limits(property: &str) -> Limits {
+    if property == "restitution" {
+        Limits::Restitution
+    } else {
+        Limits::Friction
+    }
+}
+
+/// `x` without the binary-rounding tail (0.7 + 0.2 + 0.2 prints 1.1, not 1.0999999999999999).
+fn round_for_message(x: f64) -> f64 {
+    const DIGITS: f64 = 1e9;
+    (x * DIGITS).round() / DIGITS
+}

@@ -1,0 +1,95 @@
+//! Checks of `[parameters."<name>"]` ranges: registry names, owners, limits, order.
+
+use std::collections::BTreeMap;
+
+use super::Validator;
+use crate::study::file_format::StudyFile;
+use crate::study::key_path::KeyPath;
+use crate::study::limits::Limits;
+use crate::study::nearest_name::nearest_name;
+use crate::study::parameters::{self, lookup, Owner};
+
+impl Validator<'_, '_> {
+    pub(super) fn parameters(&mut self, file: &StudyFile) {
+        let at = KeyPath::root().key("parameters");
+        let known = parameters::names();
+        let mut labels: BTreeMap<String, String> = BTreeMap::new();
+        for (name, range) in &file.parameters {
+            let k = at.key(name);
+            let Some(spec) = lookup(name) else {
+                let hint = nearest_name(name, &known)
+                    .map_or(String::new(), |n| format!("did you mean '{n}'? "));
+                self.fail(
+                    &k,
+                    format!(
+                        "unknown parameter '{name}'; {hint}(known: {})",
+                        known.join(", ")
+                    ),
+                );
+                continue;
+            };
+            let owner_present = match spec.owner {
+                Owner::Material(m) => file.materials.contains_key(m),
+                Owner::Pair(p) => file.pairs.contains_key(p),
+            };
+            if !owner_present {
+                let table = match spec.owner {
+                    Owner::Material(m) => format!("[materials.{m}]"),
+                    Owner::Pair(p) => format!("[pairs.\"{p}\"]"),
+                };
+                self.fail(
+                    &k,
+                    format!(
+                        "varies {} of {table}, which this study does not have",
+                        spec.property
+                    ),
+                );
+            }
+            let limits = range.limits(spec);
+            for (key, value) in [("low", range.low), ("high", range.high)] {
+                if let Err(mut reason) = limits.check(value) {
+                    if limits == Limits::Poisson && (0.5..1.0).contains(&value) {
+                        reason.push_str(
+                            "; to screen beyond the isotropic limit knowingly (seed 000 Table 3 \
+                             goes to 0.586), set poisson_above_half = true in this range",
+                        );
+                    }
+                    self.fail(&k.key(key), reason);
+                }
+            }
+            if range.poisson_above_half && spec.limits != Limits::Poisson {
+                self.fail(
+                    &k.key("poisson_above_half"),
+                    "applies only to Poisson ratios",
+                );
+            }
+            if range.low.is_finite() && range.high.is_finite() {
+                if range.low > range.high {
+                    self.fail(
+                        &k.key("low"),
+                        format!(
+                            "low {} > high {}: the range is reversed",
+                            range.low, range.high
+                        ),
+                    );
+                } else if range.low == range.high {
+                    self.fail(
+                        &k.key("low"),
+                        format!(
+                            "low = high = {}: a parameter that does not vary cannot be screened; \
+                             remove the range and give the value in its material or pair",
+                            range.low
+                        ),
+                    );
+                }
+            }
+            let label = range.label.clone().unwrap_or_else(|| spec.label.to_owned());
+            if let Some(other) = labels.insert(label.clone(), name.clone()) {
+                self.fail(
+                    &k.key("label"),
+                    format!("label '{label}' is also used by '{other}'"),
+                );
+            }
+        }
+    }
+}
