@@ -7,6 +7,7 @@ pub mod doe;
 pub mod lab;
 pub mod lab_repose;
 pub mod pour;
+pub mod study;
 
 use clap::{Parser, Subcommand};
 
@@ -28,6 +29,8 @@ pub enum Command {
     Lab(lab::Args),
     /// Designs of experiments: make a design, analyse a response, optimise a fitted surface.
     Doe(doe::Args),
+    /// Study files: validate one before any simulation runs.
+    Study(study::Args),
 }
 
 impl Cli {
@@ -37,6 +40,7 @@ impl Cli {
             Command::Pour(args) => pour::run(args),
             Command::Lab(args) => lab::run(args),
             Command::Doe(args) => doe::run(args),
+            Command::Study(args) => study::run(args),
         }
     }
 }

@@ -1,0 +1,42 @@
+//! `arachis study check` on the shipped study and on a bad one, through the real binary.
+
+use std::process::Command;
+
+fn arachis(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_arachis"))
+        .args(args)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .output()
+        .expect("run arachis")
+}
+
+#[test]
+fn shipped_study_checks_and_exports_json() {
+    let out = arachis(&[
+        "study",
+        "check",
+        "testdata/peanut-pods-saline/study.toml",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(json["format"], "arachis-study-1");
+    assert_eq!(json["study"]["parameters"].as_object().unwrap().len(), 8);
+    assert_eq!(json["derived"]["target_value"], 31.06);
+}
+
+#[test]
+fn bad_study_lists_every_error_and_exits_2() {
+    let out = arachis(&["study", "check", "testdata/bad-studies/range_reversed.toml"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("testdata/bad-studies/range_reversed.toml:"),
+        "{err}"
+    );
+    assert!(err.contains("low"), "{err}");
+}
