@@ -167,11 +167,18 @@ pub fn udivrem(un: u128, ud: u128) -> (u128, u128) {
     }
     #[cfg(not(feature = "pure-integer"))]
     {
-        let df = ud as f64;
-        let mut t = (un as f64 / df) as u128;
+        // Estimate with hardware conversions only (u64/i64 ↔ f64): un = |a|·2^32, ud < 2^63.
+        let df = ud as u64 as f64;
+        let af = (un >> FRAC_BITS) as u64 as f64;
+        let mut t = (af / df * 4_294_967_296.0) as u64 as u128;
         let mut r = un as i128 - (t * ud) as i128;
-        // Second estimate from the (now small) remainder.
-        let c = (r as f64 / df) as i128;
+        // Second estimate from the remainder (hardware conversion when it fits an i64, the
+        // usual case; software i128 conversion otherwise).
+        let c = if r > i64::MIN as i128 && r < i64::MAX as i128 {
+            (r as i64 as f64 / df) as i64 as i128
+        } else {
+            (r as f64 / df) as i128
+        };
         t = (t as i128 + c) as u128;
         r -= c * ud as i128;
         while r < 0 {
@@ -229,7 +236,14 @@ pub fn isqrt_floor_u128(v: u128) -> u128 {
     }
     #[cfg(not(feature = "pure-integer"))]
     {
-        let mut r = libm::sqrt(v as f64) as u128;
+        // v = raw·2^32 in Fx use; estimate √v = √(v/2^32)·2^16 with hardware conversions.
+        let mut r = if v >> 64 == 0 {
+            libm::sqrt(v as u64 as f64) as u64 as u128
+        } else if v >> 96 == 0 {
+            (libm::sqrt((v >> 32) as u64 as f64) * 65_536.0) as u64 as u128
+        } else {
+            libm::sqrt(v as f64) as u128
+        };
         while r * r > v {
             r -= 1;
         }
