@@ -21,12 +21,13 @@ impl<S: Scalar> World<'_, S> {
         let dt = self.dt;
         let nb = self.n_bodies as usize;
         for (id, b) in self.bodies[..nb].iter_mut().enumerate() {
-            b.velocity += b.force.scale(b.inv_mass * dt);
+            // (F/m)·dt, not F·(dt/m): dt/m can be a few raw units in Q32.32 (tiny dt, light body).
+            b.velocity += b.force.scale(b.inv_mass).scale(dt);
             b.position += b.velocity.scale(dt);
             let w0 = b.angular_velocity;
             if !b.is_clump {
                 let inv_i = b.inv_inertia.x;
-                let mut w = w0 + b.torque.scale(inv_i * dt);
+                let mut w = w0 + b.torque.scale(inv_i).scale(dt);
                 if b.roll_torque > S::ZERO {
                     let wn2 = w0.norm2();
                     if wn2 > S::ZERO {
