@@ -379,6 +379,7 @@ proptest! {
         dt in prop_oneof![Just(1e-6), any_f64().prop_map(|x| x.abs() * 1e-4)],
         fixed in any::<bool>(),
     ) {
+        #[allow(clippy::too_many_arguments)]
         fn go<S: Scalar>(
             e_pa: f64, nu: f64, rho: f64, rest: f64, mu: f64, mur: f64,
             spheres: &[(f64, f64, f64, f64, f64)], wall_kind: u8, wall_v: f64, dt: f64,
