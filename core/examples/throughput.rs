@@ -109,6 +109,23 @@ fn run<S: Scalar>(n: usize, steps: u64) {
         }
     }
     let secs = t0.elapsed().as_secs_f64();
+    let mut tops: Vec<f64> = w
+        .spheres()
+        .iter()
+        .map(|s| (s.position.z + s.radius).to_f64())
+        .collect();
+    tops.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    let bed = tops[(0.95 * (tops.len() - 1) as f64).round() as usize];
+    let com = w
+        .bodies()
+        .iter()
+        .map(|b| b.position.z.to_f64())
+        .sum::<f64>()
+        / n as f64;
+    println!(
+        "bed height (p95 of z+R) {bed:.4} mm, mean z {com:.4} mm, KE {:.3e} mJ",
+        w.kinetic_energy_mj()
+    );
     println!(
         "{}: {} spheres x {} steps in {:.3} s = {:.3e} particle-steps/s ({:.3} ms/step); digest {:016x}",
         S::NAME,

@@ -69,10 +69,12 @@ impl Fx {
     }
     #[inline(always)]
     fn check(r: i128) -> Fx {
-        if r > i64::MAX as i128 || r <= i64::MIN as i128 {
+        // r fits an i64 iff bits 63..127 are all equal; POISON itself is also refused.
+        let lo = r as i64;
+        if (lo as i128 != r) | (lo == POISON) {
             Fx::POISON
         } else {
-            Fx(r as i64)
+            Fx(lo)
         }
     }
 }

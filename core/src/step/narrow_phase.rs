@@ -66,11 +66,17 @@ impl<S: Scalar> Ctx<'_, S> {
         r_star_alpha: S,
         m_star: S,
     ) -> Result<Vec3<S>, Fail> {
-        let bod_i = self.bodies[bi];
+        let bod_i = &self.bodies[bi];
+        let (pos_i, vel_i, w_i, clump_i) = (
+            bod_i.position,
+            bod_i.velocity,
+            bod_i.angular_velocity,
+            bod_i.is_clump,
+        );
         let arm_len_i = r_i - overlap * S::HALF;
         let c = p_i + n.scale(arm_len_i);
-        let arm_i = c - bod_i.position;
-        let mut v_rel = j.wall_velocity - (bod_i.velocity + bod_i.angular_velocity.cross(arm_i));
+        let arm_i = c - pos_i;
+        let mut v_rel = j.wall_velocity - (vel_i + w_i.cross(arm_i));
         let mut arm_j = Vec3::ZERO;
         let mut lever_j = S::ZERO;
         if let Some(bj) = j.body {
@@ -93,7 +99,7 @@ impl<S: Scalar> Ctx<'_, S> {
         } else {
             S::ZERO
         };
-        let lever_i = if pair.rolling.on && bod_i.is_clump {
+        let lever_i = if pair.rolling.on && clump_i {
             arm_i.norm()
         } else {
             arm_len_i
