@@ -162,3 +162,154 @@ impl BenchBed {
         Ok(world)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::body::{Body, Sphere};
+    use crate::contact::ContactSlot;
+    use crate::num::Fx;
+    use std::vec;
+    use std::vec::Vec;
+
+    /// Owned arenas for one bed (tests may allocate; the core does not).
+    struct Arenas<S: Scalar> {
+        bodies: Vec<Body<S>>,
+        spheres: Vec<Sphere<S>>,
+        contacts: Vec<ContactSlot<S>>,
+        index: Vec<u32>,
+        cells: Vec<u32>,
+    }
+
+    impl<S: Scalar> Arenas<S> {
+        fn for_bed(bed: &BenchBed) -> Self {
+            let l = bed.storage_lengths();
+            Arenas {
+                bodies: vec![Body::default(); l.bodies],
+                spheres: vec![Sphere::default(); l.spheres],
+                contacts: vec![ContactSlot::default(); l.contacts],
+                index: vec![0; l.sphere_index],
+                cells: vec![0; l.cells],
+            }
+        }
+        fn storage(&mut self) -> Storage<'_, S> {
+            Storage {
+                bodies: &mut self.bodies,
+                spheres: &mut self.spheres,
+                contacts: &mut self.contacts,
+                sphere_index: &mut self.index,
+                cells: &mut self.cells,
+            }
+        }
+    }
+
+    /// Sphere centres in mm.
+    fn centres<S: Scalar>(bed: &BenchBed) -> Vec<[f64; 3]> {
+        let mut arenas = Arenas::<S>::for_bed(bed);
+        let world = bed.build(arenas.storage()).unwrap();
+        world
+            .spheres()
+            .iter()
+            .map(|s| s.position.to_f64())
+            .collect()
+    }
+
+    #[test]
+    fn design_bed_is_inside_the_region_and_free_of_overlap() {
+        let bed = BenchBed::design();
+        let mut arenas = Arenas::<Fx>::for_bed(&bed);
+        let world = bed.build(arenas.storage()).unwrap();
+        assert_eq!(world.spheres().len(), DESIGN_PARTICLES as usize);
+        let c: Vec<[f64; 3]> = world
+            .spheres()
+            .iter()
+            .map(|s| s.position.to_f64())
+            .collect();
+        let (r_max, z_min, z_max) = (45.0, 10.0, 400.0); // mm, DESIGN §8
+        let quantum = 1e-9; // mm: Q32.32 rounding of the µm lattice points
+        for p in &c {
+            assert!(libm::hypot(p[0], p[1]) <= r_max + quantum, "{p:?}");
+            assert!(p[2] >= z_min - quantum && p[2] <= z_max + quantum, "{p:?}");
+        }
+        let diameter = 2.0 * SPHERE_RADIUS_UM as f64 / 1_000.0;
+        for (i, a) in c.iter().enumerate() {
+            for b in &c[i + 1..] {
+                let d2 = (0..3).map(|k| (a[k] - b[k]) * (a[k] - b[k])).sum::<f64>();
+                assert!(d2 >= diameter * diameter - 1e-6, "overlap: {a:?} {b:?}");
+            }
+        }
+        for b in world.bodies() {
+            assert_eq!(b.velocity.to_f64(), [0.0, 0.0, Fx::from_f64(-0.2).to_f64()]);
+        }
+    }
+
+    #[test]
+    fn fixed_and_f64_beds_from_one_seed_differ_only_by_quantisation() {
+        let bed = BenchBed::with_particles(500);
+        let fixed = centres::<Fx>(&bed);
+        let reference = centres::<f64>(&bed);
+        assert_eq!(fixed.len(), reference.len());
+        // Q32.32 rounds to nearest: at most half a unit, 2⁻³³ mm.
+        let half_unit = libm::exp2(-33.0);
+        for (a, b) in fixed.iter().zip(&reference) {
+            for k in 0..3 {
+                assert!((a[k] - b[k]).abs() <= half_unit, "{a:?} vs {b:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn another_seed_gives_another_bed() {
+        let a = centres::<Fx>(&BenchBed::with_particles(50));
+        let b = centres::<Fx>(&BenchBed {
+            seed: DEFAULT_SEED ^ 1,
+            ..BenchBed::with_particles(50)
+        });
+        assert_ne!(a, b);
+    }
+
+    #[test]
+    fn impossible_counts_are_refused_before_insertion() {
+        let mut arenas = Arenas::<Fx>::for_bed(&BenchBed::with_particles(1));
+        let zero = BenchBed::with_particles(0).build(arenas.storage());
+        assert_eq!(zero.err(), Some(ScenarioError::NoParticles));
+        let max = BenchBed::max_particles();
+        let too_many = BenchBed::with_particles(max + 1).build(arenas.storage());
+        assert_eq!(
+            too_many.err(),
+            Some(ScenarioError::TooManyParticles {
+                requested: max + 1,
+                max
+            })
+        );
+    }
+
+    #[test]
+    #[cfg_attr(
+        debug_assertions,
+        ignore = "release only: fills the region (≈1 s in release)"
+    )]
+    fn the_largest_accepted_count_can_be_inserted() {
+        let bed = BenchBed::with_particles(BenchBed::max_particles());
+        let mut arenas = Arenas::<Fx>::for_bed(&bed);
+        let world = bed.build(arenas.storage()).unwrap();
+        assert_eq!(world.spheres().len(), bed.particles as usize);
+    }
+
+    #[test]
+    fn a_time_step_above_the_stable_bound_is_refused() {
+        let bed = BenchBed::with_particles(3);
+        let mut arenas = Arenas::<Fx>::for_bed(&bed);
+        let err = bed.build_with_timestep(arenas.storage(), 1e-3).err();
+        assert!(
+            matches!(
+                err,
+                Some(ScenarioError::Setup(
+                    crate::error::SetupError::TimeStepTooLarge { .. }
+                ))
+            ),
+            "{err:?}"
+        );
+    }
+}
