@@ -6,6 +6,10 @@
 //! A granular pour is chaotic: the two runs follow different sphere-by-sphere histories
 //! within a few hundred contact steps, so this compares the *bulk* state, which is what a
 //! user reads off a simulation. The figures are printed; run with `--nocapture` to see them.
+//! For scale (measured with `arachis pour --f64 --seed …`, core milestone 1): f64 beds from
+//! three insertion seeds had bed heights 144.49, 145.35 and 146.57 mm and COM heights 74.10,
+//! 74.80 and 75.05 mm, a seed-to-seed spread of about 1.4 % and 1.3 %; fixed vs f64 from one
+//! seed differed by 0.22 % and 0.21 %.
 //!
 //! Heavy (about a minute in release, the two scalars on two threads: fixed ≈ 35–60 s, f64 ≈
 //! 16–40 s for 2 000 × 20 000 particle-steps, depending on machine load), so it is
