@@ -183,7 +183,9 @@ fn frame_steps(args: &Args) -> Vec<u64> {
     (0..k).map(|i| i * args.steps / (k - 1)).collect()
 }
 
-/// The spheres of `world` as a VTK frame, SI units.
+/// The spheres of `world` as a VTK frame, SI units. A sphere's velocity is its body's
+/// centre-of-mass velocity, exact for the bed's free spheres (a clump sphere would also need
+/// ω × offset).
 fn capture<S: Scalar>(world: &World<'_, S>) -> ParticleFrame {
     let spheres = world.spheres();
     let bodies = world.bodies();
