@@ -1,0 +1,113 @@
+//! The contact law, as composable terms (DESIGN §2, §6; seed 000 eqs. (1)–(7)).
+//!
+//! Each physical effect is a separate struct implementing [`ContactTerm`], with its own
+//! parameters and an "off" value, held per material pair in [`crate::pair::PairParams`]:
+//!
+//! | stage | term | file | formula |
+//! |---|---|---|---|
+//! | normal | [`HertzNormal`] | `hertz_normal.rs` | Fn = (4/3)E*·a·α, a = √(R*α) (eq. 3) |
+//! | normal | [`NormalDamping`] | `normal_damping.rs` | Fn_d = −2√(5/6)β√(Sn m*)·vn, Sn = 2E*a (eq. 4) |
+//! | clip | [`clip_normal`] | `mod.rs` | Fn ← max(Fn, 0): **no attractive normal force** |
+//! | tangential | [`MindlinTangential`] | `mindlin_tangential.rs` | Ft = −St·δt, St = 8G*a (eq. 5) |
+//! | tangential | [`TangentialDamping`] | `tangential_damping.rs` | Ft_d = −2√(5/6)β√(St m*)·vt (eq. 6) |
+//! | tangential | [`CoulombLimit`] | `coulomb.rs` | \|Ft\| ≤ μs·Fn, history rescaled |
+//! | rolling | [`RollingCdt`] | `rolling_cdt.rs` | T = −μr·Fn·Ri·ω̂i (eq. 7, EDEM CDT) |
+//!
+//! The terms run in that order, so a later effect (cohesion, another rolling law, bonds) is a
+//! new struct added to the pair table at the right stage, without touching these.
+//!
+//! **Attractive force.** The total normal force (elastic + damping) is clipped at ≥ 0: the law
+//! never pulls bodies together. With this clip the damping law does not return exactly the
+//! input e (Thornton, Cummins & Cleary 2013); the restitution test measures the effective e.
+//! The Coulomb limit and the rolling torque both use this clipped total normal force
+//! (EDEM convention; LIGGGHTS uses the elastic part only for rolling).
+//!
+//! Sign conventions: body i and body j (or a wall, as j); `normal` is the unit vector from i
+//! towards j; relative velocity is v_j − v_i at the contact point, so vn = v_rel·n > 0 when
+//! separating. Forces in [`ContactForce`] act on j; i receives the opposite.
+
+pub mod coulomb;
+pub mod hertz_normal;
+pub mod history;
+pub mod mindlin_tangential;
+pub mod normal_damping;
+pub mod rolling_cdt;
+pub mod tangential_damping;
+
+pub use coulomb::CoulombLimit;
+pub use hertz_normal::HertzNormal;
+pub use history::{ContactSlot, ContactState, WALL_PARTNER_FLAG};
+pub use mindlin_tangential::MindlinTangential;
+pub use normal_damping::NormalDamping;
+pub use rolling_cdt::RollingCdt;
+pub use tangential_damping::TangentialDamping;
+
+use crate::num::{Scalar, Vec3};
+
+/// 2√(5/6): the damping prefactor of seed 000 eqs. (4) and (6).
+pub const DAMPING_PREFACTOR: f64 = 1.825_741_858_350_553_7;
+
+/// β = ln e / √(ln²e + π²) (seed 000 eq. (4)); β ≤ 0, and β = 0 for e = 1.
+pub fn beta_from_restitution(e: f64) -> f64 {
+    let l = libm::log(e);
+    l / libm::sqrt(l * l + core::f64::consts::PI * core::f64::consts::PI)
+}
+
+/// Geometry and relative motion of one contact, from the narrow phase.
+#[derive(Clone, Copy, Debug)]
+pub struct ContactKinematics<S> {
+    /// Unit normal from body i towards body j (or the wall).
+    pub normal: Vec3<S>,
+    /// Normal overlap α, mm (> 0), seed 000 eq. (1).
+    pub overlap: S,
+    /// Contact radius a = √(R*·α), mm (DESIGN §2).
+    pub contact_radius: S,
+    /// √(a·m*), √(mm·g): shared by both damping terms (zero if no damping term is on).
+    pub sqrt_a_mstar: S,
+    /// Normal relative velocity vn = (v_j − v_i)·n, mm/ms (> 0 separating).
+    pub vn: S,
+    /// Tangential relative velocity, mm/ms.
+    pub vt: Vec3<S>,
+    /// Time step, ms.
+    pub dt: S,
+    /// Distance from body i's centre of mass to the contact point, mm.
+    pub lever_i: S,
+    /// Distance from body j's centre of mass to the contact point, mm (0 for a wall).
+    pub lever_j: S,
+}
+
+/// Force and rolling torque of one contact, accumulated by the terms.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ContactForce<S> {
+    /// Normal force on j along `normal`, N (≥ 0 after [`clip_normal`]).
+    pub normal: S,
+    /// Tangential force on j, N.
+    pub tangential: Vec3<S>,
+    /// Tangential stiffness St of this step, N/mm (set by [`MindlinTangential`]; used by the
+    /// Coulomb history rescale).
+    pub tangential_stiffness: S,
+    /// Rolling-resistance torque magnitude on body i, N·mm, acting along −ω̂i.
+    pub roll_i: S,
+    /// Rolling-resistance torque magnitude on body j, N·mm, acting along −ω̂j.
+    pub roll_j: S,
+}
+
+/// One piece of the contact law. Implementations add to `out` and may update `state`
+/// (the contact history); each one has an "off" value in which it does nothing.
+pub trait ContactTerm<S: Scalar> {
+    /// Add this term's contribution.
+    fn apply(
+        &self,
+        k: &ContactKinematics<S>,
+        state: &mut ContactState<S>,
+        out: &mut ContactForce<S>,
+    );
+}
+
+/// Clip the total normal force at zero: the contact law is never attractive.
+#[inline(always)]
+pub fn clip_normal<S: Scalar>(out: &mut ContactForce<S>) {
+    if out.normal < S::ZERO {
+        out.normal = S::ZERO;
+    }
+}

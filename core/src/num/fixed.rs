@@ -1,0 +1,279 @@
+//! [`Fx`]: Q32.32 fixed point as a newtype over the raw `i64`, with round-to-nearest
+//! multiplication, overflow poisoning and a deterministic integer square root.
+//!
+//! Why a newtype rather than `fixed::types::I32F32` directly: the stepper needs
+//! (1) multiplication rounded to nearest (`I32F32`'s `*` floors, a bias that accumulates over
+//! ~1e6 steps, DESIGN §4), (2) overflow that neither wraps nor panics but *poisons* the result so
+//! that one cheap validity check per contact and per body reports it, and (3) a deterministic
+//! integer square root. The bit layout is exactly `I32F32`'s, so [`Fx::from_i32f32`] and
+//! [`Fx::to_i32f32`] convert losslessly.
+//!
+//! Resolution 2⁻³² ≈ 2.3e-10, range ±2.1e9 (in the internal units of [`crate::units`]).
+//!
+//! ```
+//! use arachis_core::num::{Fx, Scalar};
+//! let a = Fx::from_f64(1.5);
+//! let b = Fx::from_f64(2.0);
+//! assert_eq!((a * b).to_f64(), 3.0);
+//! assert_eq!(Fx::from_f64(9.0).sqrt().to_f64(), 3.0);
+//! // Overflow poisons instead of wrapping:
+//! let big = Fx::from_f64(2.0e9);
+//! assert!(!(big * big).is_valid());
+//! ```
+
+use super::scalar::Scalar;
+use core::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
+
+/// Number of fractional bits.
+pub const FRAC_BITS: u32 = 32;
+/// Raw value of 1.0.
+const ONE_RAW: i64 = 1 << FRAC_BITS;
+/// Raw poison value: the result of any overflowing operation; it propagates like a NaN.
+const POISON: i64 = i64::MIN;
+
+/// Q32.32 fixed-point number (raw `i64`, value = raw / 2³²). See the module docs.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Default)]
+#[repr(transparent)]
+pub struct Fx(i64);
+
+impl Fx {
+    /// The overflow poison.
+    pub const POISON: Fx = Fx(POISON);
+    /// Largest representable value.
+    pub const MAX: Fx = Fx(i64::MAX);
+
+    /// From raw Q32.32 bits.
+    #[inline]
+    pub const fn from_raw(raw: i64) -> Self {
+        Fx(raw)
+    }
+    /// Raw Q32.32 bits.
+    #[inline]
+    pub const fn raw(self) -> i64 {
+        self.0
+    }
+    /// From an integer (exact when |i| < 2³¹).
+    #[inline]
+    pub const fn from_int(i: i32) -> Self {
+        Fx((i as i64) << FRAC_BITS)
+    }
+    /// Lossless conversion from the `fixed` crate's `I32F32` (same bit layout).
+    #[inline]
+    pub fn from_i32f32(x: fixed::types::I32F32) -> Self {
+        Fx(x.to_bits())
+    }
+    /// Lossless conversion to the `fixed` crate's `I32F32`.
+    #[inline]
+    pub fn to_i32f32(self) -> fixed::types::I32F32 {
+        fixed::types::I32F32::from_bits(self.0)
+    }
+    #[inline(always)]
+    fn check(r: i128) -> Fx {
+        if r > i64::MAX as i128 || r <= i64::MIN as i128 {
+            Fx::POISON
+        } else {
+            Fx(r as i64)
+        }
+    }
+}
+
+impl core::fmt::Debug for Fx {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        if self.0 == POISON {
+            write!(f, "Fx(POISON)")
+        } else {
+            write!(f, "Fx({})", self.to_f64())
+        }
+    }
+}
+
+impl Add for Fx {
+    type Output = Fx;
+    #[inline(always)]
+    fn add(self, rhs: Fx) -> Fx {
+        let (r, o) = self.0.overflowing_add(rhs.0);
+        if o | (self.0 == POISON) | (rhs.0 == POISON) {
+            Fx::POISON
+        } else {
+            Fx(r)
+        }
+    }
+}
+impl Sub for Fx {
+    type Output = Fx;
+    #[inline(always)]
+    fn sub(self, rhs: Fx) -> Fx {
+        let (r, o) = self.0.overflowing_sub(rhs.0);
+        if o | (self.0 == POISON) | (rhs.0 == POISON) | (r == POISON) {
+            Fx::POISON
+        } else {
+            Fx(r)
+        }
+    }
+}
+impl Neg for Fx {
+    type Output = Fx;
+    #[inline(always)]
+    fn neg(self) -> Fx {
+        // -POISON would overflow; POISON stays POISON.
+        Fx(self.0.checked_neg().unwrap_or(POISON))
+    }
+}
+impl Mul for Fx {
+    type Output = Fx;
+    /// Round-to-nearest (ties toward +∞) product, poisoned on overflow.
+    #[inline(always)]
+    fn mul(self, rhs: Fx) -> Fx {
+        if (self.0 == POISON) | (rhs.0 == POISON) {
+            return Fx::POISON;
+        }
+        let p = (self.0 as i128) * (rhs.0 as i128);
+        Fx::check((p + (1i128 << (FRAC_BITS - 1))) >> FRAC_BITS)
+    }
+}
+impl Div for Fx {
+    type Output = Fx;
+    /// Quotient rounded to nearest (ties away from zero); division by zero poisons.
+    #[inline]
+    fn div(self, rhs: Fx) -> Fx {
+        if (self.0 == POISON) | (rhs.0 == POISON) | (rhs.0 == 0) {
+            return Fx::POISON;
+        }
+        let n = (self.0 as i128) << FRAC_BITS;
+        let d = rhs.0 as i128;
+        let half = d.abs() / 2;
+        let q = if (n < 0) == (d < 0) {
+            (n + if d < 0 { -half } else { half }) / d
+        } else {
+            (n - if d < 0 { -half } else { half }) / d
+        };
+        Fx::check(q)
+    }
+}
+impl AddAssign for Fx {
+    #[inline(always)]
+    fn add_assign(&mut self, rhs: Fx) {
+        *self = *self + rhs;
+    }
+}
+impl SubAssign for Fx {
+    #[inline(always)]
+    fn sub_assign(&mut self, rhs: Fx) {
+        *self = *self - rhs;
+    }
+}
+
+/// Integer square root of a `u128`, rounded to nearest. Deterministic: integer operations only.
+#[inline]
+pub fn isqrt_round_u128(v: u128) -> u128 {
+    let r = if v <= u64::MAX as u128 {
+        (v as u64).isqrt() as u128
+    } else {
+        v.isqrt()
+    };
+    // (r + 1/2)² = r² + r + 1/4: round up when v - r² > r.
+    if v - r * r > r {
+        r + 1
+    } else {
+        r
+    }
+}
+
+impl Scalar for Fx {
+    const ZERO: Self = Fx(0);
+    const ONE: Self = Fx(ONE_RAW);
+    const HALF: Self = Fx(ONE_RAW / 2);
+    const NAME: &'static str = "fixed";
+
+    fn from_f64(x: f64) -> Self {
+        let s = libm::round(x * ONE_RAW as f64);
+        // 2^63 is exactly representable; anything at or beyond it (or NaN) poisons.
+        if !(s > -9.223_372_036_854_775e18 && s < 9.223_372_036_854_775e18) {
+            return Fx::POISON;
+        }
+        Fx(s as i64)
+    }
+    #[inline]
+    fn to_f64(self) -> f64 {
+        if self.0 == POISON {
+            f64::NAN
+        } else {
+            self.0 as f64 / ONE_RAW as f64
+        }
+    }
+    #[inline]
+    fn sqrt(self) -> Self {
+        if self.0 < 0 {
+            return Fx::POISON;
+        }
+        let v = (self.0 as u128) << FRAC_BITS;
+        Fx(isqrt_round_u128(v) as i64)
+    }
+    #[inline(always)]
+    fn is_valid(self) -> bool {
+        self.0 != POISON
+    }
+    #[inline]
+    fn to_bits(self) -> u64 {
+        self.0 as u64
+    }
+    #[inline]
+    fn mul_int(self, k: i32) -> Self {
+        if self.0 == POISON {
+            return Fx::POISON;
+        }
+        Fx::check(self.0 as i128 * k as i128)
+    }
+    #[inline(always)]
+    fn floor_i64(self) -> i64 {
+        self.0 >> FRAC_BITS
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mul_rounds_to_nearest() {
+        // 2^-32 * 0.5 = 2^-33 → ties round up to 2^-32; 2^-32 * 0.25 → 0.
+        let eps = Fx::from_raw(1);
+        assert_eq!((eps * Fx::from_f64(0.5)).raw(), 1);
+        assert_eq!((eps * Fx::from_f64(0.25)).raw(), 0);
+        assert_eq!((Fx::from_raw(-1) * Fx::from_f64(0.25)).raw(), 0);
+        assert_eq!((Fx::from_f64(-1.5) * Fx::from_f64(2.0)).to_f64(), -3.0);
+    }
+
+    #[test]
+    fn div_rounds_and_poisons() {
+        assert_eq!((Fx::from_int(1) / Fx::from_int(4)).to_f64(), 0.25);
+        assert_eq!((Fx::from_int(-7) / Fx::from_int(2)).to_f64(), -3.5);
+        let third = Fx::from_int(1) / Fx::from_int(3);
+        assert!((third.to_f64() - 1.0 / 3.0).abs() < 2.4e-10);
+        assert!(!(Fx::ONE / Fx::ZERO).is_valid());
+    }
+
+    #[test]
+    fn overflow_poisons_and_propagates() {
+        let big = Fx::from_int(i32::MAX);
+        assert!(!(big + big).is_valid());
+        assert!(!(-big - big - big).is_valid());
+        assert!(!(big * big).is_valid());
+        let p = Fx::POISON;
+        assert!(!(p * Fx::ZERO).is_valid());
+        assert!(!(p + Fx::ONE).is_valid());
+        assert!(!(-p).is_valid());
+        assert!(!Fx::from_f64(f64::NAN).is_valid());
+        assert!(!Fx::from_f64(3e9).is_valid());
+    }
+
+    #[test]
+    fn sqrt_is_rounded() {
+        for &x in &[0.0, 1e-9, 0.018, 1.0, 2.0, 64.0, 1e6, 2.0e9] {
+            let q = Fx::from_f64(x);
+            let s = q.sqrt().to_f64();
+            assert!((s - q.to_f64().sqrt()).abs() <= 2.4e-10, "{x}: {s}");
+        }
+        assert!(!Fx::from_f64(-1.0).sqrt().is_valid());
+    }
+}

@@ -1,0 +1,117 @@
+//! The [`Scalar`] trait: the arithmetic the stepper needs, implemented by [`Fx`](super::Fx)
+//! (Q32.32 fixed point) and by `f64` (reference).
+//!
+//! Invalid values: both implementations have an "invalid" state that propagates through
+//! arithmetic like a NaN: `f64` uses NaN/±∞, [`Fx`](super::Fx) uses a poison value produced by
+//! any overflowing operation. The stepper checks [`Scalar::is_valid`] once per contact and once
+//! per body, so overflow is reported as a typed error and is never silent (DESIGN §4).
+
+use core::fmt::Debug;
+use core::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
+
+/// Arithmetic used by the stepper. Implemented by [`Fx`](super::Fx) and `f64`.
+pub trait Scalar:
+    Copy
+    + Debug
+    + PartialEq
+    + PartialOrd
+    + Default
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + SubAssign
+    + 'static
+{
+    /// Additive identity.
+    const ZERO: Self;
+    /// Multiplicative identity.
+    const ONE: Self;
+    /// One half (exact in both implementations).
+    const HALF: Self;
+    /// Short name for messages and dumps ("fixed" or "f64").
+    const NAME: &'static str;
+
+    /// Quantise an `f64` (set-up only). Fixed point rounds to nearest; out-of-range or
+    /// non-finite input gives the invalid value.
+    fn from_f64(x: f64) -> Self;
+    /// Convert to `f64` (for reports, dumps and tests; never used while stepping).
+    fn to_f64(self) -> f64;
+    /// Square root. Fixed point: deterministic integer square root, rounded to nearest.
+    /// Negative input gives the invalid value.
+    fn sqrt(self) -> Self;
+    /// `false` for NaN/∞ (`f64`) or the overflow poison ([`Fx`](super::Fx)).
+    fn is_valid(self) -> bool;
+    /// Raw bits for the digest (`f64::to_bits` or the Q32.32 raw integer).
+    fn to_bits(self) -> u64;
+    /// Multiply by a small integer exactly (used for constant factors such as 2).
+    fn mul_int(self, k: i32) -> Self;
+    /// Floor to an integer, saturating at the `i64` range (grid binning).
+    fn floor_i64(self) -> i64;
+
+    /// Absolute value.
+    #[inline]
+    fn abs(self) -> Self {
+        if self < Self::ZERO {
+            -self
+        } else {
+            self
+        }
+    }
+    /// Larger of two values.
+    #[inline]
+    fn max(self, other: Self) -> Self {
+        if self > other {
+            self
+        } else {
+            other
+        }
+    }
+    /// Smaller of two values.
+    #[inline]
+    fn min(self, other: Self) -> Self {
+        if self < other {
+            self
+        } else {
+            other
+        }
+    }
+}
+
+impl Scalar for f64 {
+    const ZERO: Self = 0.0;
+    const ONE: Self = 1.0;
+    const HALF: Self = 0.5;
+    const NAME: &'static str = "f64";
+
+    #[inline]
+    fn from_f64(x: f64) -> Self {
+        x
+    }
+    #[inline]
+    fn to_f64(self) -> f64 {
+        self
+    }
+    #[inline]
+    fn sqrt(self) -> Self {
+        libm::sqrt(self)
+    }
+    #[inline]
+    fn is_valid(self) -> bool {
+        self.is_finite()
+    }
+    #[inline]
+    fn to_bits(self) -> u64 {
+        f64::to_bits(self)
+    }
+    #[inline]
+    fn mul_int(self, k: i32) -> Self {
+        self * f64::from(k)
+    }
+    #[inline]
+    fn floor_i64(self) -> i64 {
+        libm::floor(self) as i64
+    }
+}

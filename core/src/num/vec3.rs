@@ -1,0 +1,110 @@
+//! [`Vec3`]: a 3-vector generic over [`Scalar`].
+
+use super::scalar::Scalar;
+use core::ops::{Add, AddAssign, Neg, Sub, SubAssign};
+
+/// A 3-vector. Units are those of the quantity it holds (stated where it is used).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Vec3<S> {
+    /// x component.
+    pub x: S,
+    /// y component.
+    pub y: S,
+    /// z component.
+    pub z: S,
+}
+
+impl<S: Scalar> Vec3<S> {
+    /// The zero vector.
+    pub const ZERO: Self = Vec3 {
+        x: S::ZERO,
+        y: S::ZERO,
+        z: S::ZERO,
+    };
+    /// Build from components.
+    #[inline(always)]
+    pub fn new(x: S, y: S, z: S) -> Self {
+        Vec3 { x, y, z }
+    }
+    /// Quantise from `f64` components (set-up only).
+    pub fn from_f64(v: [f64; 3]) -> Self {
+        Vec3::new(S::from_f64(v[0]), S::from_f64(v[1]), S::from_f64(v[2]))
+    }
+    /// Convert to `f64` components.
+    pub fn to_f64(self) -> [f64; 3] {
+        [self.x.to_f64(), self.y.to_f64(), self.z.to_f64()]
+    }
+    /// Dot product.
+    #[inline(always)]
+    pub fn dot(self, o: Self) -> S {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+    /// Cross product.
+    #[inline(always)]
+    pub fn cross(self, o: Self) -> Self {
+        Vec3::new(
+            self.y * o.z - self.z * o.y,
+            self.z * o.x - self.x * o.z,
+            self.x * o.y - self.y * o.x,
+        )
+    }
+    /// Scale by a scalar.
+    #[inline(always)]
+    pub fn scale(self, s: S) -> Self {
+        Vec3::new(self.x * s, self.y * s, self.z * s)
+    }
+    /// Squared length.
+    #[inline(always)]
+    pub fn norm2(self) -> S {
+        self.dot(self)
+    }
+    /// Length.
+    #[inline]
+    pub fn norm(self) -> S {
+        self.norm2().sqrt()
+    }
+    /// `true` when all components are valid (no overflow poison / NaN).
+    #[inline(always)]
+    pub fn is_valid(self) -> bool {
+        self.x.is_valid() & self.y.is_valid() & self.z.is_valid()
+    }
+    /// Component-wise product.
+    #[inline(always)]
+    pub fn mul_elem(self, o: Self) -> Self {
+        Vec3::new(self.x * o.x, self.y * o.y, self.z * o.z)
+    }
+}
+
+impl<S: Scalar> Add for Vec3<S> {
+    type Output = Self;
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        Vec3::new(self.x + o.x, self.y + o.y, self.z + o.z)
+    }
+}
+impl<S: Scalar> Sub for Vec3<S> {
+    type Output = Self;
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        Vec3::new(self.x - o.x, self.y - o.y, self.z - o.z)
+    }
+}
+impl<S: Scalar> Neg for Vec3<S> {
+    type Output = Self;
+    #[inline(always)]
+    fn neg(self) -> Self {
+        Vec3::new(-self.x, -self.y, -self.z)
+    }
+}
+impl<S: Scalar> AddAssign for Vec3<S> {
+    #[inline(always)]
+    fn add_assign(&mut self, o: Self) {
+        *self = *self + o;
+    }
+}
+impl<S: Scalar> SubAssign for Vec3<S> {
+    #[inline(always)]
+    fn sub_assign(&mut self, o: Self) {
+        *self = *self - o;
+    }
+}

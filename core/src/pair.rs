@@ -1,0 +1,168 @@
+//! Material-pair parameters: the contact terms of [`crate::contact`] with their constants
+//! precomputed at set-up (E*, G*, damping factors), one entry per unordered material pair.
+//!
+//! ```
+//! use arachis_core::pair::PairSpec;
+//! // Pod–pod, seed 000 §3.6.2: e 0.335, μs 0.854, μr 0.346.
+//! let p = PairSpec::hertz_mindlin(0.335, 0.854, 0.346);
+//! assert!(p.validate().is_ok());
+//! ```
+
+use crate::contact::{
+    ContactForce, ContactKinematics, ContactState, ContactTerm, CoulombLimit, HertzNormal,
+    MindlinTangential, NormalDamping, RollingCdt, TangentialDamping,
+};
+use crate::error::SetupError;
+use crate::material::{finite, Material};
+use crate::num::Scalar;
+
+/// Which terms a pair uses. Each switch turns one term to its "off" value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TermSwitches {
+    /// Hertz elastic normal force (seed 000 eq. 3).
+    pub hertz_normal: bool,
+    /// Normal damping (eq. 4).
+    pub normal_damping: bool,
+    /// Mindlin tangential spring with history (eq. 5).
+    pub mindlin_tangential: bool,
+    /// Tangential damping (eq. 6).
+    pub tangential_damping: bool,
+    /// Coulomb limit |Ft| ≤ μs Fn.
+    pub coulomb_limit: bool,
+    /// CDT rolling friction (eq. 7).
+    pub rolling_cdt: bool,
+}
+
+impl TermSwitches {
+    /// Every term of EDEM's Hertz–Mindlin (no slip) with CDT rolling friction.
+    pub const ALL: TermSwitches = TermSwitches {
+        hertz_normal: true,
+        normal_damping: true,
+        mindlin_tangential: true,
+        tangential_damping: true,
+        coulomb_limit: true,
+        rolling_cdt: true,
+    };
+}
+
+/// Pair interaction as given by the user.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PairSpec {
+    /// Coefficient of restitution e ∈ (0, 1] (sets β of eqs. (4), (6)).
+    pub restitution: f64,
+    /// Sliding (static) friction coefficient μs ≥ 0.
+    pub friction: f64,
+    /// Rolling friction coefficient μr ≥ 0.
+    pub rolling_friction: f64,
+    /// Which terms are on.
+    pub terms: TermSwitches,
+}
+
+impl PairSpec {
+    /// Hertz–Mindlin (no slip) + CDT rolling friction, all terms on.
+    pub fn hertz_mindlin(restitution: f64, friction: f64, rolling_friction: f64) -> Self {
+        PairSpec {
+            restitution,
+            friction,
+            rolling_friction,
+            terms: TermSwitches::ALL,
+        }
+    }
+
+    /// Check e ∈ (0, 1], μs ≥ 0, μr ≥ 0, all finite.
+    pub fn validate(&self) -> Result<(), SetupError> {
+        let e = finite(self.restitution, "restitution")?;
+        let mu = finite(self.friction, "sliding friction")?;
+        let mur = finite(self.rolling_friction, "rolling friction")?;
+        if !(e > 0.0 && e <= 1.0) {
+            return Err(SetupError::RestitutionOutOfRange { e });
+        }
+        if mu < 0.0 {
+            return Err(SetupError::NegativeFriction {
+                what: "sliding",
+                value: mu,
+            });
+        }
+        if mur < 0.0 {
+            return Err(SetupError::NegativeFriction {
+                what: "rolling",
+                value: mur,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Precomputed pair constants: one struct per contact term, in pipeline order.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PairParams<S> {
+    /// `false` until [`crate::world::World::set_pair`] is called for this pair.
+    pub defined: bool,
+    /// E*, MPa (kept for reports).
+    pub e_star_mpa: f64,
+    /// G*, MPa (kept for reports).
+    pub g_star_mpa: f64,
+    /// Hertz normal term.
+    pub hertz: HertzNormal<S>,
+    /// Normal damping term.
+    pub normal_damping: NormalDamping<S>,
+    /// Mindlin tangential spring.
+    pub tangential: MindlinTangential<S>,
+    /// Tangential damping.
+    pub tangential_damping: TangentialDamping<S>,
+    /// Coulomb limit.
+    pub coulomb: CoulombLimit<S>,
+    /// CDT rolling friction.
+    pub rolling: RollingCdt<S>,
+}
+
+impl<S: Scalar> PairParams<S> {
+    /// Precompute from two materials and a validated spec.
+    pub fn new(a: &Material, b: &Material, spec: &PairSpec) -> Self {
+        let e_star = 1.0 / (a.inv_e_star_part() + b.inv_e_star_part());
+        let g_star = 1.0 / (a.inv_g_star_part() + b.inv_g_star_part());
+        let t = spec.terms;
+        let mut p = PairParams {
+            defined: true,
+            e_star_mpa: e_star,
+            g_star_mpa: g_star,
+            hertz: HertzNormal::new(e_star),
+            normal_damping: NormalDamping::new(spec.restitution, e_star),
+            tangential: MindlinTangential::new(g_star),
+            tangential_damping: TangentialDamping::new(spec.restitution, g_star),
+            coulomb: CoulombLimit::new(spec.friction),
+            rolling: RollingCdt::new(spec.rolling_friction),
+        };
+        p.hertz.on &= t.hertz_normal;
+        p.normal_damping.on &= t.normal_damping;
+        p.tangential.on &= t.mindlin_tangential;
+        p.tangential_damping.on &= t.tangential_damping && t.mindlin_tangential;
+        p.coulomb.on &= t.coulomb_limit && t.mindlin_tangential;
+        p.rolling.on &= t.rolling_cdt;
+        p
+    }
+
+    /// `true` when a damping term needs √(a·m*).
+    #[inline(always)]
+    pub fn needs_damping(&self) -> bool {
+        self.normal_damping.on | self.tangential_damping.on
+    }
+
+    /// Run all terms in pipeline order (normal → clip → tangential → rolling).
+    #[inline(always)]
+    pub fn evaluate(
+        &self,
+        k: &ContactKinematics<S>,
+        state: &mut ContactState<S>,
+    ) -> ContactForce<S> {
+        let mut out = ContactForce::default();
+        self.hertz.apply(k, state, &mut out);
+        self.normal_damping.apply(k, state, &mut out);
+        crate::contact::clip_normal(&mut out);
+        self.tangential.apply(k, state, &mut out);
+        self.tangential_damping.apply(k, state, &mut out);
+        self.coulomb.apply(k, state, &mut out);
+        self.rolling.apply(k, state, &mut out);
+        out
+    }
+}

@@ -1,0 +1,107 @@
+//! Broad phase: a dense cell grid over the spheres' bounding box, cell edge ≥ 2·R_max, filled
+//! by counting sort into the caller's `cells` and `sphere_index` arrays. O(N) per step, no
+//! allocation, deterministic: spheres are binned in id order and pairs are visited cell by
+//! cell over a half neighbourhood (the cell itself and 13 of its 26 neighbours), so each pair
+//! is seen once.
+//!
+//! When the bounding box needs more cells than the caller gave, neighbouring cells are merged
+//! (edge × k) until it fits: always correct, slower only for very spread-out particles.
+//!
+//! Layout of `sphere_index` (n = sphere capacity): `[0, n)` cell of each sphere, `[n, 2n)`
+//! spheres sorted by cell, `[2n, 4n)` contact counts of the two history halves.
+
+use crate::num::{Scalar, Vec3};
+use crate::world::World;
+
+/// Grid geometry of the current step.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Grid {
+    pub dims: [u32; 3],
+}
+
+/// Forward half of the 26 neighbour offsets: (dx, dy, dz) lexicographically after (0,0,0).
+pub(crate) const HALF_NEIGHBOURS: [[i32; 3]; 13] = [
+    [1, 0, 0],
+    [-1, 1, 0],
+    [0, 1, 0],
+    [1, 1, 0],
+    [-1, -1, 1],
+    [0, -1, 1],
+    [1, -1, 1],
+    [-1, 0, 1],
+    [0, 0, 1],
+    [1, 0, 1],
+    [-1, 1, 1],
+    [0, 1, 1],
+    [1, 1, 1],
+];
+
+impl<S: Scalar> World<'_, S> {
+    /// Bin spheres into cells; returns the grid dimensions.
+    pub(crate) fn bin_spheres(&mut self) -> Grid {
+        let n = self.n_spheres as usize;
+        let cap = self.spheres.len();
+        if n == 0 {
+            return Grid::default();
+        }
+        let sp = &self.spheres[..n];
+        let mut lo = sp[0].position;
+        let mut hi = sp[0].position;
+        for s in sp {
+            let p = s.position;
+            lo = Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
+            hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
+        }
+        let edge = self.max_radius.mul_int(2);
+        let ext = hi - lo;
+        // Integer cell counts at edge 2·R_max (floor(ext/edge) + 1, saturating).
+        let dim = |e: S| -> i64 { (e / edge).floor_i64().clamp(0, 1 << 40) + 1 };
+        let d0 = [dim(ext.x), dim(ext.y), dim(ext.z)];
+        let budget = (self.cells.len() - 1) as i64;
+        let mut k: i64 = 1;
+        let total = |k: i64| -> i64 {
+            let c = |d: i64| (d + k - 1) / k;
+            c(d0[0]).saturating_mul(c(d0[1])).saturating_mul(c(d0[2]))
+        };
+        while total(k) > budget {
+            k = if total(k * 2) > budget { k * 2 } else { k + 1 };
+        }
+        let dims = [
+            ((d0[0] + k - 1) / k) as u32,
+            ((d0[1] + k - 1) / k) as u32,
+            ((d0[2] + k - 1) / k) as u32,
+        ];
+        let ncell = dims[0] as usize * dims[1] as usize * dims[2] as usize;
+        let (cell_of, rest) = self.index.split_at_mut(cap);
+        let sorted = &mut rest[..cap];
+        let cells = &mut self.cells[..ncell + 1];
+        for c in cells.iter_mut() {
+            *c = 0;
+        }
+        let edge_k = edge.mul_int(k.min(i32::MAX as i64) as i32);
+        for (i, s) in sp.iter().enumerate() {
+            let r = s.position - lo;
+            let cx = ((r.x / edge_k).floor_i64().clamp(0, dims[0] as i64 - 1)) as u32;
+            let cy = ((r.y / edge_k).floor_i64().clamp(0, dims[1] as i64 - 1)) as u32;
+            let cz = ((r.z / edge_k).floor_i64().clamp(0, dims[2] as i64 - 1)) as u32;
+            let c = (cz * dims[1] + cy) * dims[0] + cx;
+            cell_of[i] = c;
+            cells[c as usize + 1] += 1;
+        }
+        for c in 0..ncell {
+            cells[c + 1] += cells[c];
+        }
+        // Scatter in id order: cells[c] becomes the running insertion point, after which
+        // cells[c] = end of cell c = start of cell c + 1; restore starts by shifting.
+        for (i, &c) in cell_of[..n].iter().enumerate() {
+            let at = &mut cells[c as usize];
+            sorted[*at as usize] = i as u32;
+            *at += 1;
+        }
+        for c in (1..=ncell).rev() {
+            cells[c] = cells[c - 1];
+        }
+        cells[0] = 0;
+        Grid { dims }
+    }
+}

@@ -1,0 +1,33 @@
+//! Wall motion: each wall translates by its prescribed velocity × dt (mm/ms × ms).
+
+use crate::error::{Other, Stage, StepError};
+use crate::num::Scalar;
+use crate::world::World;
+
+impl<S: Scalar> World<'_, S> {
+    pub(crate) fn move_walls(&mut self) -> Result<(), StepError> {
+        let dt = self.dt;
+        for (i, w) in self.walls.iter_mut().enumerate() {
+            let d = w.velocity.scale(dt);
+            if d.x == S::ZERO && d.y == S::ZERO && d.z == S::ZERO {
+                continue;
+            }
+            w.shape.translate(d);
+            let mut ok = d.is_valid();
+            w.shape.for_each_bits(|_| ());
+            match &w.shape {
+                crate::wall::WallShape::Plane(p) => ok &= p.point.is_valid(),
+                crate::wall::WallShape::Cylinder(c) => ok &= c.base.is_valid(),
+                crate::wall::WallShape::AaBox(b) => ok &= b.min.is_valid() & b.max.is_valid(),
+            }
+            if !ok {
+                return Err(StepError::Overflow {
+                    stage: Stage::WallMotion,
+                    body: i as u32,
+                    other: Other::Wall(i as u32),
+                });
+            }
+        }
+        Ok(())
+    }
+}

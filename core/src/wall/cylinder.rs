@@ -1,0 +1,48 @@
+//! Cylinder wall, particles inside. With ρ the distance of the centre from the axis and Rc the
+//! cylinder radius, α = R + ρ − Rc; the normal points radially outwards. A finite cylinder only
+//! acts on spheres whose centre lies between its ends (its ends are open: add planes as caps).
+
+use crate::num::{Scalar, Vec3};
+
+/// Cylinder around the axis through `base` along unit `axis`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cylinder<S> {
+    /// A point on the axis (the bottom end when finite), mm.
+    pub base: Vec3<S>,
+    /// Unit axis.
+    pub axis: Vec3<S>,
+    /// Radius, mm.
+    pub radius: S,
+    /// Length from `base` along `axis`, mm (ignored when not `finite`).
+    pub length: S,
+    /// Finite (`true`) or infinite.
+    pub finite: bool,
+}
+
+impl<S: Scalar> Cylinder<S> {
+    /// See [`super::WallShape::for_each_contact`]. One face (0).
+    #[inline(always)]
+    pub fn for_each_contact(&self, c: Vec3<S>, r: S, mut hit: impl FnMut(u32, Vec3<S>, S)) {
+        let rel = c - self.base;
+        let h = rel.dot(self.axis);
+        if self.finite && (h < S::ZERO || h > self.length) {
+            return;
+        }
+        let radial = rel - self.axis.scale(h);
+        let d2 = radial.norm2();
+        let inner = self.radius - r;
+        // Cheap rejection without a square root: fully inside the contact-free core.
+        if inner > S::ZERO && d2 < inner * inner {
+            return;
+        }
+        let d = d2.sqrt();
+        if d == S::ZERO {
+            // On the axis: no defined radial direction (only possible when R ≥ Rc).
+            return;
+        }
+        let overlap = r + d - self.radius;
+        if overlap > S::ZERO {
+            hit(0, radial.scale(S::ONE / d), overlap);
+        }
+    }
+}

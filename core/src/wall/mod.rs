@@ -1,0 +1,253 @@
+//! Walls: infinite planes ([`Plane`]), finite or infinite cylinders with particles inside
+//! ([`Cylinder`]) and axis-aligned boxes with particles inside ([`AaBox`]). Each wall moves
+//! at a prescribed velocity (mm/ms = m/s), e.g. the repose test lifts a cylinder at 0.05 m/s.
+//!
+//! Seam for triangle meshes: [`WallShape`] is `#[non_exhaustive]`; a mesh wall becomes a new
+//! variant whose contact routine reports (face, normal, overlap) hits through the same callback
+//! as the shapes here ([`WallShape::for_each_contact`]), so the contact law does not change.
+//!
+//! A wall has infinite mass: m* = m_i and R* = R_i (DESIGN §2).
+
+pub mod aabox;
+pub mod cylinder;
+pub mod plane;
+
+pub use aabox::AaBox;
+pub use cylinder::Cylinder;
+pub use plane::Plane;
+
+use crate::error::SetupError;
+use crate::material::{finite, MaterialId};
+use crate::num::{Scalar, Vec3};
+use crate::units::{LENGTH_M_TO_MM, VELOCITY_M_S_TO_MM_MS};
+
+/// Largest number of walls in one world.
+pub const MAX_WALLS: usize = 16;
+
+/// Index of a wall in the world.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct WallId(pub u32);
+
+/// Geometry of a wall (internal units, mm).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum WallShape<S> {
+    /// Infinite plane.
+    Plane(Plane<S>),
+    /// Cylinder, particles inside.
+    Cylinder(Cylinder<S>),
+    /// Axis-aligned box, particles inside.
+    AaBox(AaBox<S>),
+}
+
+/// A wall in the world.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Wall<S> {
+    /// Geometry (current position).
+    pub shape: WallShape<S>,
+    /// Prescribed velocity, mm/ms (= m/s).
+    pub velocity: Vec3<S>,
+    /// Material id.
+    pub material: u16,
+    /// Total contact force the particles exert on this wall in the last step, N.
+    pub force: Vec3<S>,
+}
+
+impl<S: Scalar> WallShape<S> {
+    /// Call `hit(face, normal, overlap)` for each face the sphere (centre `c`, radius `r`, mm)
+    /// overlaps; `normal` is the unit vector from the sphere centre towards the wall, `overlap`
+    /// is α > 0 in mm. Faces are reported in a fixed order.
+    #[inline(always)]
+    pub fn for_each_contact(&self, c: Vec3<S>, r: S, hit: impl FnMut(u32, Vec3<S>, S)) {
+        match self {
+            WallShape::Plane(p) => p.for_each_contact(c, r, hit),
+            WallShape::Cylinder(y) => y.for_each_contact(c, r, hit),
+            WallShape::AaBox(b) => b.for_each_contact(c, r, hit),
+        }
+    }
+
+    /// Translate by `d`, mm.
+    pub fn translate(&mut self, d: Vec3<S>) {
+        match self {
+            WallShape::Plane(p) => p.point += d,
+            WallShape::Cylinder(y) => y.base += d,
+            WallShape::AaBox(b) => {
+                b.min += d;
+                b.max += d;
+            }
+        }
+    }
+
+    /// Raw bits of all geometry fields, for the digest.
+    pub fn for_each_bits(&self, mut f: impl FnMut(u64)) {
+        let v = |v: Vec3<S>, f: &mut dyn FnMut(u64)| {
+            f(v.x.to_bits());
+            f(v.y.to_bits());
+            f(v.z.to_bits());
+        };
+        match self {
+            WallShape::Plane(p) => {
+                f(1);
+                v(p.point, &mut f);
+                v(p.normal, &mut f);
+            }
+            WallShape::Cylinder(y) => {
+                f(2);
+                v(y.base, &mut f);
+                v(y.axis, &mut f);
+                f(y.radius.to_bits());
+                f(y.length.to_bits());
+                f(y.finite as u64);
+            }
+            WallShape::AaBox(b) => {
+                f(3);
+                v(b.min, &mut f);
+                v(b.max, &mut f);
+            }
+        }
+    }
+}
+
+/// Wall geometry as given by the user (SI units).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum WallGeometry {
+    /// Infinite plane through `point_m` with unit `normal` pointing to the particle side.
+    Plane {
+        /// A point on the plane, m.
+        point_m: [f64; 3],
+        /// Normal towards the particles (normalised at set-up).
+        normal: [f64; 3],
+    },
+    /// Cylinder around the axis through `base_m` along `axis`, particles inside.
+    Cylinder {
+        /// A point on the axis, m (the bottom end when finite).
+        base_m: [f64; 3],
+        /// Axis direction (normalised at set-up).
+        axis: [f64; 3],
+        /// Radius, m.
+        radius_m: f64,
+        /// Length along the axis from `base_m`, m; `None` for infinite.
+        length_m: Option<f64>,
+    },
+    /// Axis-aligned box, particles inside.
+    AaBox {
+        /// Lower corner, m.
+        min_m: [f64; 3],
+        /// Upper corner, m.
+        max_m: [f64; 3],
+    },
+}
+
+/// A wall as given by the user.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WallSpec {
+    /// Geometry.
+    pub geometry: WallGeometry,
+    /// Material.
+    pub material: MaterialId,
+    /// Prescribed velocity, m/s.
+    pub velocity_m_s: [f64; 3],
+}
+
+fn fin3(v: [f64; 3], what: &'static str) -> Result<[f64; 3], SetupError> {
+    for x in v {
+        finite(x, what)?;
+    }
+    Ok(v)
+}
+
+fn unit(v: [f64; 3], what: &'static str) -> Result<[f64; 3], SetupError> {
+    let v = fin3(v, what)?;
+    let n = libm::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if n == 0.0 {
+        return Err(SetupError::BadWall {
+            reason: "zero normal or axis",
+        });
+    }
+    Ok([v[0] / n, v[1] / n, v[2] / n])
+}
+
+pub(crate) fn q3<S: Scalar>(
+    v: [f64; 3],
+    scale: f64,
+    what: &'static str,
+) -> Result<Vec3<S>, SetupError> {
+    let v = fin3(v, what)?;
+    let mut out = [S::ZERO; 3];
+    for k in 0..3 {
+        out[k] = crate::world::quantise(v[k] * scale, what)?;
+    }
+    Ok(Vec3::new(out[0], out[1], out[2]))
+}
+
+impl WallSpec {
+    /// A wall at rest.
+    pub fn fixed(geometry: WallGeometry, material: MaterialId) -> Self {
+        WallSpec {
+            geometry,
+            material,
+            velocity_m_s: [0.0; 3],
+        }
+    }
+
+    /// Validate and convert to internal units.
+    pub fn build<S: Scalar>(&self) -> Result<Wall<S>, SetupError> {
+        let shape = match self.geometry {
+            WallGeometry::Plane { point_m, normal } => WallShape::Plane(Plane {
+                point: q3(point_m, LENGTH_M_TO_MM, "plane point")?,
+                normal: q3(unit(normal, "plane normal")?, 1.0, "plane normal")?,
+            }),
+            WallGeometry::Cylinder {
+                base_m,
+                axis,
+                radius_m,
+                length_m,
+            } => {
+                let r = finite(radius_m, "cylinder radius")?;
+                if r <= 0.0 {
+                    return Err(SetupError::BadWall {
+                        reason: "cylinder radius must be > 0",
+                    });
+                }
+                let (len, fin) = match length_m {
+                    Some(l) => {
+                        let l = finite(l, "cylinder length")?;
+                        if l <= 0.0 {
+                            return Err(SetupError::BadWall {
+                                reason: "cylinder length must be > 0",
+                            });
+                        }
+                        (l, true)
+                    }
+                    None => (0.0, false),
+                };
+                WallShape::Cylinder(Cylinder {
+                    base: q3(base_m, LENGTH_M_TO_MM, "cylinder base")?,
+                    axis: q3(unit(axis, "cylinder axis")?, 1.0, "cylinder axis")?,
+                    radius: crate::world::quantise(r * LENGTH_M_TO_MM, "cylinder radius")?,
+                    length: crate::world::quantise(len * LENGTH_M_TO_MM, "cylinder length")?,
+                    finite: fin,
+                })
+            }
+            WallGeometry::AaBox { min_m, max_m } => {
+                let lo = fin3(min_m, "box corner")?;
+                let hi = fin3(max_m, "box corner")?;
+                if (0..3).any(|k| hi[k] <= lo[k]) {
+                    return Err(SetupError::BadWall {
+                        reason: "box max must exceed min on every axis",
+                    });
+                }
+                WallShape::AaBox(AaBox {
+                    min: q3(lo, LENGTH_M_TO_MM, "box corner")?,
+                    max: q3(hi, LENGTH_M_TO_MM, "box corner")?,
+                })
+            }
+        };
+        Ok(Wall {
+            shape,
+            velocity: q3(self.velocity_m_s, VELOCITY_M_S_TO_MM_MS, "wall velocity")?,
+            material: self.material.0,
+            force: Vec3::ZERO,
+        })
+    }
+}
