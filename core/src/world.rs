@@ -49,12 +49,22 @@ pub const MAX_INTERNAL_MAGNITUDE: f64 = 1.0e9;
 /// Quantise a set-up value (internal units) into `S`, refusing non-finite values, values
 /// beyond [`MAX_INTERNAL_MAGNITUDE`], and non-zero values that would round to zero.
 pub fn quantise<S: Scalar>(x: f64, what: &'static str) -> Result<S, SetupError> {
+    let q = quantise_coordinate(x, what)?;
+    if x != 0.0 && q == S::ZERO {
+        return Err(SetupError::NotRepresentable { what, value: x });
+    }
+    Ok(q)
+}
+
+/// Quantise a coordinate-like value (position, velocity, offset): like [`quantise`] but
+/// values below the resolution may round to zero.
+pub fn quantise_coordinate<S: Scalar>(x: f64, what: &'static str) -> Result<S, SetupError> {
     let x = finite(x, what)?;
     if x.abs() > MAX_INTERNAL_MAGNITUDE {
         return Err(SetupError::NotRepresentable { what, value: x });
     }
     let q = S::from_f64(x);
-    if !q.is_valid() || (x != 0.0 && q == S::ZERO) {
+    if !q.is_valid() {
         return Err(SetupError::NotRepresentable { what, value: x });
     }
     Ok(q)

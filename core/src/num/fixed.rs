@@ -139,17 +139,60 @@ impl Div for Fx {
         if (self.0 == POISON) | (rhs.0 == POISON) | (rhs.0 == 0) {
             return Fx::POISON;
         }
-        let n = (self.0 as i128) << FRAC_BITS;
-        let d = rhs.0 as i128;
-        let half = d.abs() / 2;
-        let q = if (n < 0) == (d < 0) {
-            (n + if d < 0 { -half } else { half }) / d
-        } else {
-            (n - if d < 0 { -half } else { half }) / d
-        };
-        Fx::check(q)
+        let neg = (self.0 < 0) != (rhs.0 < 0);
+        let un = (self.0.unsigned_abs() as u128) << FRAC_BITS;
+        let ud = rhs.0.unsigned_abs() as u128;
+        // Quotients of 2^63 or more overflow; checking first keeps t·ud < 2^127 below.
+        if un >= ud << 63 {
+            return Fx::POISON;
+        }
+        let (t, rem) = udivrem(un, ud);
+        let q = t + (2 * rem >= ud) as u128;
+        Fx::check(if neg { -(q as i128) } else { q as i128 })
     }
 }
+
+/// Exact truncated quotient and remainder of `un / ud` (requires `un < ud · 2^63`).
+///
+/// The result is the unique integer pair with `un = t·ud + rem`, `0 ≤ rem < ud`: it does not
+/// depend on how it is found. By default a hardware `f64` estimate (two rounds) is corrected
+/// with exact integer multiply-and-compare, which is several times faster than 128-bit
+/// software division; with the `pure-integer` feature the plain integer division is used.
+/// Tests check both give identical bits.
+#[inline(always)]
+pub fn udivrem(un: u128, ud: u128) -> (u128, u128) {
+    #[cfg(feature = "pure-integer")]
+    {
+        (un / ud, un % ud)
+    }
+    #[cfg(not(feature = "pure-integer"))]
+    {
+        // Estimate with hardware conversions only (u64/i64 ↔ f64): un = |a|·2^32, ud < 2^63.
+        let df = ud as u64 as f64;
+        let af = (un >> FRAC_BITS) as u64 as f64;
+        let mut t = (af / df * 4_294_967_296.0) as u64 as u128;
+        let mut r = un as i128 - (t * ud) as i128;
+        // Second estimate from the remainder (hardware conversion when it fits an i64, the
+        // usual case; software i128 conversion otherwise).
+        let c = if r > i64::MIN as i128 && r < i64::MAX as i128 {
+            (r as i64 as f64 / df) as i64 as i128
+        } else {
+            (r as f64 / df) as i128
+        };
+        t = (t as i128 + c) as u128;
+        r -= c * ud as i128;
+        while r < 0 {
+            t -= 1;
+            r += ud as i128;
+        }
+        while r >= ud as i128 {
+            t += 1;
+            r -= ud as i128;
+        }
+        (t, r as u128)
+    }
+}
+
 impl AddAssign for Fx {
     #[inline(always)]
     fn add_assign(&mut self, rhs: Fx) {
@@ -163,18 +206,50 @@ impl SubAssign for Fx {
     }
 }
 
-/// Integer square root of a `u128`, rounded to nearest. Deterministic: integer operations only.
+/// Integer square root of a `u128`, rounded to nearest: the unique r with
+/// (r − ½)² ≤ v < (r + ½)².
+///
+/// By default an `f64` estimate is corrected to the exact integer root with integer
+/// multiply-and-compare (the result does not depend on the estimate); with the `pure-integer`
+/// feature the integer-only `isqrt` of `core` is used. Tests check both agree.
 #[inline]
 pub fn isqrt_round_u128(v: u128) -> u128 {
-    let r = if v <= u64::MAX as u128 {
-        (v as u64).isqrt() as u128
-    } else {
-        v.isqrt()
-    };
+    let r = isqrt_floor_u128(v);
     // (r + 1/2)² = r² + r + 1/4: round up when v - r² > r.
     if v - r * r > r {
         r + 1
     } else {
+        r
+    }
+}
+
+/// ⌊√v⌋ for `v < 2^126`, exact.
+#[inline(always)]
+pub fn isqrt_floor_u128(v: u128) -> u128 {
+    #[cfg(feature = "pure-integer")]
+    {
+        if v <= u64::MAX as u128 {
+            (v as u64).isqrt() as u128
+        } else {
+            v.isqrt()
+        }
+    }
+    #[cfg(not(feature = "pure-integer"))]
+    {
+        // v = raw·2^32 in Fx use; estimate √v = √(v/2^32)·2^16 with hardware conversions.
+        let mut r = if v >> 64 == 0 {
+            libm::sqrt(v as u64 as f64) as u64 as u128
+        } else if v >> 96 == 0 {
+            (libm::sqrt((v >> 32) as u64 as f64) * 65_536.0) as u64 as u128
+        } else {
+            libm::sqrt(v as f64) as u128
+        };
+        while r * r > v {
+            r -= 1;
+        }
+        while (r + 1) * (r + 1) <= v {
+            r += 1;
+        }
         r
     }
 }
@@ -265,6 +340,21 @@ mod tests {
         assert!(!(-p).is_valid());
         assert!(!Fx::from_f64(f64::NAN).is_valid());
         assert!(!Fx::from_f64(3e9).is_valid());
+    }
+
+    #[test]
+    fn fast_paths_match_integer_reference() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        for k in 0..200_000u32 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = ((x as u128) << (k % 63)) | (k as u128);
+            assert_eq!(isqrt_floor_u128(v), v.isqrt(), "sqrt {v}");
+            let d = ((x >> (k % 61)) | 1) as u128;
+            let n = v % (d << 63);
+            assert_eq!(udivrem(n, d), (n / d, n % d), "{n} / {d}");
+        }
     }
 
     #[test]

@@ -52,7 +52,10 @@ impl<S: Scalar> World<'_, S> {
             lo = Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
             hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
         }
-        let edge = self.max_radius.mul_int(2);
+        // Cell edge 2·R_max plus a 2^-16 relative margin, so that rounding in the binning
+        // products below can never put two touching spheres two cells apart.
+        let two_r = self.max_radius.mul_int(2);
+        let edge = two_r + two_r / S::ONE.mul_int(65_536);
         let ext = hi - lo;
         // Integer cell counts at edge 2·R_max (floor(ext/edge) + 1, saturating).
         let dim = |e: S| -> i64 { (e / edge).floor_i64().clamp(0, 1 << 40) + 1 };
@@ -78,12 +81,13 @@ impl<S: Scalar> World<'_, S> {
         for c in cells.iter_mut() {
             *c = 0;
         }
-        let edge_k = edge.mul_int(k.min(i32::MAX as i64) as i32);
+        // One division per step; binning multiplies by the reciprocal of the (merged) edge.
+        let inv = S::ONE / edge.mul_int(k.min(i32::MAX as i64) as i32);
         for (i, s) in sp.iter().enumerate() {
-            let r = s.position - lo;
-            let cx = ((r.x / edge_k).floor_i64().clamp(0, dims[0] as i64 - 1)) as u32;
-            let cy = ((r.y / edge_k).floor_i64().clamp(0, dims[1] as i64 - 1)) as u32;
-            let cz = ((r.z / edge_k).floor_i64().clamp(0, dims[2] as i64 - 1)) as u32;
+            let r = (s.position - lo).scale(inv);
+            let cx = (r.x.floor_i64().clamp(0, dims[0] as i64 - 1)) as u32;
+            let cy = (r.y.floor_i64().clamp(0, dims[1] as i64 - 1)) as u32;
+            let cz = (r.z.floor_i64().clamp(0, dims[2] as i64 - 1)) as u32;
             let c = (cz * dims[1] + cy) * dims[0] + cx;
             cell_of[i] = c;
             cells[c as usize + 1] += 1;

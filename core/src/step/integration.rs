@@ -21,17 +21,15 @@ impl<S: Scalar> World<'_, S> {
         let dt = self.dt;
         let nb = self.n_bodies as usize;
         for (id, b) in self.bodies[..nb].iter_mut().enumerate() {
-            b.velocity += b.force.scale(b.inv_mass * dt);
+            // (F/m)·dt, not F·(dt/m): dt/m can be a few raw units in Q32.32 (tiny dt, light body).
+            b.velocity += b.force.scale(b.inv_mass).scale(dt);
             b.position += b.velocity.scale(dt);
             let w0 = b.angular_velocity;
             if !b.is_clump {
                 let inv_i = b.inv_inertia.x;
-                let mut w = w0 + b.torque.scale(inv_i * dt);
+                let mut w = w0 + b.torque.scale(inv_i).scale(dt);
                 if b.roll_torque > S::ZERO {
-                    let wn2 = w0.norm2();
-                    if wn2 > S::ZERO {
-                        let wn = wn2.sqrt();
-                        let hat = w0.scale(S::ONE / wn);
+                    if let Some(hat) = unit(w0) {
                         let along = w.dot(hat);
                         if along > S::ZERO {
                             let dec = (b.roll_torque * inv_i * dt).min(along);
@@ -50,9 +48,7 @@ impl<S: Scalar> World<'_, S> {
                 let gyro = wb0.cross(lb);
                 let mut wb = wb0 + b.inv_inertia.mul_elem(tb - gyro).scale(dt);
                 if b.roll_torque > S::ZERO {
-                    let wn2 = wb0.norm2();
-                    if wn2 > S::ZERO {
-                        let hat = wb0.scale(S::ONE / wn2.sqrt());
+                    if let Some(hat) = unit(wb0) {
                         let along = wb.dot(hat);
                         // Δω = −s·I⁻¹ω̂ with angular impulse s ≤ Tr·dt; the ω̂ component then
                         // falls by s·k, k = ω̂ᵀI⁻¹ω̂; cap s so it stops at zero.
@@ -83,9 +79,21 @@ impl<S: Scalar> World<'_, S> {
                 return Err(overflow(id));
             }
         }
-        let _ = Vec3::<S>::ZERO;
         Ok(())
     }
+}
+
+/// Unit vector along `v`, or `None` for the zero vector. `v` is first divided by its largest
+/// component so that tiny vectors (whose squared norm would round to zero in Q32.32) still
+/// get an accurate direction: rolling friction must act down to the last raw unit of ω.
+#[inline]
+fn unit<S: Scalar>(v: Vec3<S>) -> Option<Vec3<S>> {
+    let m = v.x.abs().max(v.y.abs()).max(v.z.abs());
+    if m == S::ZERO {
+        return None;
+    }
+    let u = v.scale(S::ONE / m);
+    Some(u.scale(S::ONE / u.norm()))
 }
 
 fn overflow(id: usize) -> StepError {

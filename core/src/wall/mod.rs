@@ -175,7 +175,7 @@ pub(crate) fn q3<S: Scalar>(
     let v = fin3(v, what)?;
     let mut out = [S::ZERO; 3];
     for k in 0..3 {
-        out[k] = crate::world::quantise(v[k] * scale, what)?;
+        out[k] = crate::world::quantise_coordinate(v[k] * scale, what)?;
     }
     Ok(Vec3::new(out[0], out[1], out[2]))
 }

@@ -46,3 +46,153 @@ pub const STEEL: MaterialSpec = MaterialSpec {
     poisson: 0.3,
     density_kg_m3: 7865.0,
 };
+
+/// Alumina-like stiff material for the Chung & Ooi elastic tests (E 70 GPa, ν 0.3, ρ 2700).
+pub const STIFF: MaterialSpec = MaterialSpec {
+    youngs_modulus_pa: 7.0e10,
+    poisson: 0.3,
+    density_kg_m3: 2700.0,
+};
+
+/// Only the normal terms (Hertz + damping); μ = 0, no rolling.
+pub fn normal_only(e: f64) -> PairSpec {
+    PairSpec {
+        restitution: e,
+        friction: 0.0,
+        rolling_friction: 0.0,
+        terms: TermSwitches {
+            hertz_normal: true,
+            normal_damping: true,
+            mindlin_tangential: false,
+            tangential_damping: false,
+            coulomb_limit: false,
+            rolling_cdt: false,
+        },
+    }
+}
+
+/// E* in MPa of two materials (DESIGN §2).
+pub fn e_star_mpa(a: &MaterialSpec, b: &MaterialSpec) -> f64 {
+    let p = |m: &MaterialSpec| (1.0 - m.poisson * m.poisson) / (m.youngs_modulus_pa * 1e-6);
+    1.0 / (p(a) + p(b))
+}
+
+/// Sphere mass in g for radius in mm and density in kg/m³.
+pub fn sphere_mass_g(r_mm: f64, rho_kg_m3: f64) -> f64 {
+    rho_kg_m3 * 1e-6 * 4.0 / 3.0 * std::f64::consts::PI * r_mm.powi(3)
+}
+
+/// Hertz elastic impact theory (units mm, g, ms, MPa, N): (max overlap, peak force, duration).
+pub fn hertz_theory(m_star: f64, r_star: f64, e_star: f64, v: f64) -> (f64, f64, f64) {
+    let a_max = (15.0 * m_star * v * v / (16.0 * e_star * r_star.sqrt())).powf(0.4);
+    let f_max = 4.0 / 3.0 * e_star * r_star.sqrt() * a_max.powf(1.5);
+    // Exact duration constant: 2·∫₀¹ dx/√(1−x^{5/2}) · (15/16)^{2/5} = 2.9432 × ... expressed as
+    // t_c = 2.868 (m*²/(R* E*² v))^{1/5} (Johnson 1985; Chung & Ooi 2011 quote 2.87).
+    let t_c = 2.868_265 * (m_star * m_star / (r_star * e_star * e_star * v)).powf(0.2);
+    (a_max, f_max, t_c)
+}
+
+/// Independent single-contact integration (adaptive Dormand–Prince RK45 in f64) of
+/// m* α'' = −max(0, (4/3)E*√(R*α)·α + 2√(5/6)(−β)√(2E*√(R*α)·m*)·α'), started at α = 0,
+/// α' = v (approach speed); returns the separation speed (α' when α returns to 0).
+pub fn restitution_reference(m_star: f64, r_star: f64, e_star: f64, e: f64, v: f64) -> f64 {
+    let l = e.ln();
+    let beta = l / (l * l + std::f64::consts::PI.powi(2)).sqrt();
+    let damp = 2.0 * (5.0f64 / 6.0).sqrt() * (-beta);
+    let acc = |a: f64, ad: f64| -> f64 {
+        if a <= 0.0 {
+            return 0.0;
+        }
+        let ca = (r_star * a).sqrt();
+        let fel = 4.0 / 3.0 * e_star * ca * a;
+        let fd = damp * (2.0 * e_star * ca * m_star).sqrt() * ad;
+        -(fel + fd).max(0.0) / m_star
+    };
+    let f = |y: [f64; 2]| [y[1], acc(y[0], y[1])];
+    let (a_max, _, t_c) = hertz_theory(m_star, r_star, e_star, v);
+    let mut h = t_c * 1e-4;
+    let mut y = [0.0, v];
+    let mut t = 0.0;
+    // Dormand–Prince 5(4) coefficients.
+    let a: [[f64; 6]; 7] = [
+        [0.0; 6],
+        [0.2, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
+        [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
+        [
+            19372.0 / 6561.0,
+            -25360.0 / 2187.0,
+            64448.0 / 6561.0,
+            -212.0 / 729.0,
+            0.0,
+            0.0,
+        ],
+        [
+            9017.0 / 3168.0,
+            -355.0 / 33.0,
+            46732.0 / 5247.0,
+            49.0 / 176.0,
+            -5103.0 / 18656.0,
+            0.0,
+        ],
+        [
+            35.0 / 384.0,
+            0.0,
+            500.0 / 1113.0,
+            125.0 / 192.0,
+            -2187.0 / 6784.0,
+            11.0 / 84.0,
+        ],
+    ];
+    let b5 = [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+        0.0,
+    ];
+    let b4 = [
+        5179.0 / 57600.0,
+        0.0,
+        7571.0 / 16695.0,
+        393.0 / 640.0,
+        -92097.0 / 339200.0,
+        187.0 / 2100.0,
+        1.0 / 40.0,
+    ];
+    let tol = 1e-12;
+    loop {
+        let mut k = [[0.0f64; 2]; 7];
+        for s in 0..7 {
+            let mut ys = y;
+            for (j, kj) in k.iter().enumerate().take(s) {
+                ys[0] += h * a[s][j] * kj[0];
+                ys[1] += h * a[s][j] * kj[1];
+            }
+            k[s] = f(ys);
+        }
+        let mut y5 = y;
+        let mut y4 = y;
+        for s in 0..7 {
+            for d in 0..2 {
+                y5[d] += h * b5[s] * k[s][d];
+                y4[d] += h * b4[s] * k[s][d];
+            }
+        }
+        let err = ((y5[0] - y4[0]).abs() / (a_max * tol)).max((y5[1] - y4[1]).abs() / (v * tol));
+        if err <= 1.0 {
+            if y5[0] <= 0.0 && t > 0.0 {
+                // Crossed α = 0: the force is continuous (the clip reaches 0 before α does) and
+                // zero from there on, so the velocity is the separation speed.
+                return -y5[1];
+            }
+            y = y5;
+            t += h;
+        }
+        let fac = (0.9 * err.powf(-0.2)).clamp(0.2, 5.0);
+        h *= fac;
+        h = h.min(t_c * 1e-3);
+    }
+}

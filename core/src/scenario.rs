@@ -1,1 +1,0 @@
-//! Deterministic set-ups of the standard scenarios (bench bed, pours).

@@ -1,0 +1,164 @@
+//! The bench bed of DESIGN §8: the throughput and fixed-vs-f64 scenario.
+//!
+//! DESIGN §8, quoted:
+//! - "Spheres: radius 4 mm, pod material (ρ 582 kg/m³, E 8.43 MPa, ν 0.386)."
+//! - "Container: a cylinder of radius 50 mm with a floor at z = 0, both 65Mn steel
+//!   (E 2.05e11 Pa, ν 0.3)."
+//! - "Pairs: pod–pod e 0.335, μs 0.854, μr 0.346; pod–steel e 0.339, μs 0.589, μr 0.159."
+//! - "Run: insert at random, without overlap, in the region r ≤ 45 mm, 10 mm ≤ z ≤ 400 mm,
+//!   moving down at 0.2 m/s; dt = 2e-5 s; gravity 9.81 m/s². With N = 2 000 the bed has
+//!   settled (kinetic energy below 1e-6 J) by step 20 000."
+//!
+//! Reading: the region bounds the sphere *centres*; the 1 mm between r = 45 + 4 mm and the
+//! 50 mm wall keeps every sphere clear of the cylinder at insertion. The cylinder is infinite
+//! (no sphere ever rises above its insertion height) and the floor an infinite plane.
+
+use super::insertion::{insert_random_spheres, InsertionRegion, InsertionRequest};
+use super::materials::{GRAVITY_M_S2, POD, POD_POD, POD_STEEL, STEEL};
+use super::{ScenarioError, SplitMix64};
+use crate::body::{Storage, StorageLengths};
+use crate::num::Scalar;
+use crate::wall::{WallGeometry, WallSpec};
+use crate::world::World;
+use core::f64::consts::PI;
+
+/// Sphere radius, µm ("radius 4 mm").
+pub const SPHERE_RADIUS_UM: i64 = 4_000;
+/// Container cylinder radius, m ("a cylinder of radius 50 mm").
+pub const CYLINDER_RADIUS_M: f64 = 0.050;
+/// Largest distance of an inserted centre from the axis, µm ("r ≤ 45 mm").
+pub const INSERT_RADIUS_UM: i64 = 45_000;
+/// Lowest inserted centre, µm ("10 mm ≤ z").
+pub const INSERT_Z_MIN_UM: i64 = 10_000;
+/// Highest inserted centre, µm ("z ≤ 400 mm").
+pub const INSERT_Z_MAX_UM: i64 = 400_000;
+/// Initial velocity, m/s ("moving down at 0.2 m/s").
+pub const INITIAL_VELOCITY_M_S: [f64; 3] = [0.0, 0.0, -0.2];
+/// Time step, s ("dt = 2e-5 s").
+pub const TIMESTEP_S: f64 = 2e-5;
+/// Particle count of the throughput figure ("With N = 2 000").
+pub const DESIGN_PARTICLES: u32 = 2_000;
+/// Steps by which the DESIGN bed has settled ("by step 20 000").
+pub const DESIGN_SETTLE_STEPS: u64 = 20_000;
+/// Kinetic energy below which the bed counts as settled, J ("below 1e-6 J").
+pub const SETTLED_KINETIC_ENERGY_J: f64 = 1e-6;
+/// Seed of the insertion draws unless the caller picks another.
+pub const DEFAULT_SEED: u64 = 0x5EED_0008;
+
+/// Largest solid fraction accepted, counted over the envelope the spheres can occupy
+/// (centre region grown by R). Random sequential addition of equal spheres jams near 0.38;
+/// near that limit a fill needs very many candidates, each checked against every placed
+/// sphere, so requests above this fraction are refused at once with a clear error instead.
+pub const MAX_FILL_FRACTION: f64 = 0.30;
+/// Candidates drawn per sphere before insertion gives up (a backstop; [`MAX_FILL_FRACTION`]
+/// normally refuses impossible requests first).
+pub const MAX_ATTEMPTS_PER_SPHERE: u32 = 100_000;
+
+/// The DESIGN §8 bench bed with `particles` spheres, inserted from `seed`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BenchBed {
+    /// Number of spheres (the DESIGN figure uses [`DESIGN_PARTICLES`]).
+    pub particles: u32,
+    /// Seed of the insertion draws.
+    pub seed: u64,
+}
+
+impl BenchBed {
+    /// The bed with `particles` spheres and the default seed.
+    pub const fn with_particles(particles: u32) -> Self {
+        BenchBed {
+            particles,
+            seed: DEFAULT_SEED,
+        }
+    }
+
+    /// The bed of the DESIGN figure: [`DESIGN_PARTICLES`] spheres.
+    pub const fn design() -> Self {
+        Self::with_particles(DESIGN_PARTICLES)
+    }
+
+    /// Largest particle count the insertion region accepts ([`MAX_FILL_FRACTION`]).
+    pub fn max_particles() -> u32 {
+        let r = SPHERE_RADIUS_UM as f64;
+        let envelope_radius = INSERT_RADIUS_UM as f64 + r;
+        let envelope_height = (INSERT_Z_MAX_UM - INSERT_Z_MIN_UM) as f64 + 2.0 * r;
+        let envelope = PI * envelope_radius * envelope_radius * envelope_height;
+        let sphere = 4.0 / 3.0 * PI * r * r * r;
+        libm::floor(MAX_FILL_FRACTION * envelope / sphere) as u32
+    }
+
+    /// Arena lengths this bed needs (one body and one sphere per particle).
+    pub fn storage_lengths(&self) -> StorageLengths {
+        let n = self.particles as usize;
+        StorageLengths::for_spheres(n, n)
+    }
+
+    /// Build the bed over `storage`, with dt = [`TIMESTEP_S`].
+    pub fn build<'a, S: Scalar>(
+        &self,
+        storage: Storage<'a, S>,
+    ) -> Result<World<'a, S>, ScenarioError> {
+        self.build_with_timestep(storage, TIMESTEP_S)
+    }
+
+    /// Build the bed over `storage` with time step `dt_s` (s). The world refuses a dt that is
+    /// not positive or above its stable bound ([`crate::timestep`]).
+    pub fn build_with_timestep<'a, S: Scalar>(
+        &self,
+        storage: Storage<'a, S>,
+        dt_s: f64,
+    ) -> Result<World<'a, S>, ScenarioError> {
+        if self.particles == 0 {
+            return Err(ScenarioError::NoParticles);
+        }
+        let max = Self::max_particles();
+        if self.particles > max {
+            return Err(ScenarioError::TooManyParticles {
+                requested: self.particles,
+                max,
+            });
+        }
+        let mut world = World::new(storage)?;
+        let pod = world.add_material(POD)?;
+        let steel = world.add_material(STEEL)?;
+        world.set_pair(pod, pod, POD_POD)?;
+        world.set_pair(pod, steel, POD_STEEL)?;
+        world.set_gravity_m_s2(GRAVITY_M_S2)?;
+        world.add_wall(WallSpec::fixed(
+            WallGeometry::Plane {
+                point_m: [0.0; 3],
+                normal: [0.0, 0.0, 1.0],
+            },
+            steel,
+        ))?;
+        world.add_wall(WallSpec::fixed(
+            WallGeometry::Cylinder {
+                base_m: [0.0; 3],
+                axis: [0.0, 0.0, 1.0],
+                radius_m: CYLINDER_RADIUS_M,
+                length_m: None,
+            },
+            steel,
+        ))?;
+        let region = InsertionRegion::VerticalCylinder {
+            radius_um: INSERT_RADIUS_UM,
+            z_min_um: INSERT_Z_MIN_UM,
+            z_max_um: INSERT_Z_MAX_UM,
+        };
+        let request = InsertionRequest {
+            count: self.particles,
+            radius_um: SPHERE_RADIUS_UM,
+            material: pod,
+            velocity_m_s: INITIAL_VELOCITY_M_S,
+            max_attempts_per_sphere: MAX_ATTEMPTS_PER_SPHERE,
+        };
+        insert_random_spheres(
+            &mut world,
+            &mut SplitMix64::new(self.seed),
+            &region,
+            &request,
+        )?;
+        world.set_timestep_s(dt_s)?;
+        Ok(world)
+    }
+}

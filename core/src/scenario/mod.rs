@@ -1,0 +1,116 @@
+//! Deterministic, allocation-free set-ups of the standard scenarios.
+//!
+//! Each scenario builds a [`World`](crate::world::World) over arenas the caller provides
+//! (ask the scenario for its [`StorageLengths`](crate::body::StorageLengths)), for any
+//! [`Scalar`](crate::num::Scalar): a fixed-point and an `f64` world built from the same seed
+//! start from the same state up to quantisation, so their difference is a measured figure.
+//! Randomness comes from [`SplitMix64`], an integer-only generator, and random positions are
+//! drawn on an integer micrometre lattice ([`insertion`]), so a set-up is identical on every
+//! machine and in debug and release builds.
+//!
+//! | scenario | file | what it exercises |
+//! |---|---|---|
+//! | [`BenchBed`] | `bench_bed.rs` | DESIGN §8 pour into a steel cylinder: many sphere–sphere and sphere–wall contacts |
+//! | [`ClumpSlide`] | `clump_slide.rs` | two- and three-sphere clumps sliding down a steel incline into each other and a stop wall |
+//! | [`MovingWallPile`] | `moving_wall.rs` | a small pile settled on a floor, then a plane blade moving through it at a prescribed velocity |
+//!
+//! [`measure`] holds the figures reported for a bed (bed height, centre-of-mass height).
+//!
+//! ```
+//! use arachis_core::prelude::*;
+//! use arachis_core::scenario::BenchBed;
+//! let bed = BenchBed::with_particles(20);
+//! let len = bed.storage_lengths();
+//! let mut bodies = vec![Body::<Fx>::default(); len.bodies];
+//! let mut spheres = vec![Sphere::<Fx>::default(); len.spheres];
+//! let mut contacts = vec![ContactSlot::<Fx>::default(); len.contacts];
+//! let mut index = vec![0u32; len.sphere_index];
+//! let mut cells = vec![0u32; len.cells];
+//! let mut world = bed.build(Storage {
+//!     bodies: &mut bodies, spheres: &mut spheres, contacts: &mut contacts,
+//!     sphere_index: &mut index, cells: &mut cells,
+//! }).unwrap();
+//! world.run(10).unwrap();
+//! assert_eq!(world.bodies().len(), 20);
+//! ```
+
+pub mod bench_bed;
+pub mod clump_slide;
+pub mod insertion;
+pub mod materials;
+pub mod measure;
+pub mod moving_wall;
+pub mod prng;
+
+pub use bench_bed::BenchBed;
+pub use clump_slide::ClumpSlide;
+pub use moving_wall::MovingWallPile;
+pub use prng::SplitMix64;
+
+use crate::error::{SetupError, StepError};
+use core::fmt;
+
+/// Why a scenario could not be built or run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ScenarioError {
+    /// The world refused an input (capacity, range, time step): see the inner error.
+    Setup(SetupError),
+    /// A step failed while the scenario prepared its initial state (e.g. settling a pile).
+    Step(StepError),
+    /// The scenario needs at least one particle.
+    NoParticles,
+    /// More particles than random insertion can place in the scenario's region.
+    TooManyParticles {
+        /// Particles requested.
+        requested: u32,
+        /// Largest count the region accepts.
+        max: u32,
+    },
+    /// Random insertion found no free place for a sphere within its attempt budget.
+    InsertionFailed {
+        /// Spheres placed before the failure.
+        placed: u32,
+        /// Spheres requested.
+        requested: u32,
+        /// Candidates drawn for the sphere that failed.
+        attempts_per_sphere: u32,
+    },
+}
+
+impl From<SetupError> for ScenarioError {
+    fn from(e: SetupError) -> Self {
+        ScenarioError::Setup(e)
+    }
+}
+
+impl From<StepError> for ScenarioError {
+    fn from(e: StepError) -> Self {
+        ScenarioError::Step(e)
+    }
+}
+
+impl fmt::Display for ScenarioError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            ScenarioError::Setup(e) => write!(f, "{e}"),
+            ScenarioError::Step(e) => write!(f, "while preparing the scenario: {e}"),
+            ScenarioError::NoParticles => write!(f, "the number of particles must be at least 1"),
+            ScenarioError::TooManyParticles { requested, max } => write!(
+                f,
+                "{requested} particles do not fit the insertion region without overlap; \
+                 at most {max} can be inserted"
+            ),
+            ScenarioError::InsertionFailed {
+                placed,
+                requested,
+                attempts_per_sphere,
+            } => write!(
+                f,
+                "random insertion placed only {placed} of {requested} particles: no free \
+                 place found in {attempts_per_sphere} attempts; ask for fewer particles"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for ScenarioError {}

@@ -1,0 +1,302 @@
+//! Golden digests of the three standard scenarios (issue 2, "Bit-exact digests"), plus the
+//! properties that make a digest worth having: two runs dump identical per-body states, and a
+//! one-bit change of an input changes the digest.
+//!
+//! The goldens live in `testdata/digests/<scenario>.txt` and are checked in debug *and*
+//! release (`scripts/test-all.sh` runs the core tests in both profiles), so they also prove
+//! that the two profiles step to the same bits. After an intended change of the physics or
+//! of a scenario, regenerate them deliberately with
+//!
+//! ```sh
+//! ARACHIS_BLESS=1 cargo test -p arachis-core --test digest_scenarios
+//! ```
+//!
+//! and say why in the commit message. A mismatch prints both digests, this command, and the
+//! path of a per-body dump of the new state (diff it against a dump of the old build to find
+//! the first body that diverged).
+
+use arachis_core::prelude::*;
+use arachis_core::scenario::{BenchBed, ClumpSlide, MovingWallPile};
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+/// Environment variable that makes the golden checks rewrite the files instead.
+const BLESS_VAR: &str = "ARACHIS_BLESS";
+/// The command that regenerates the goldens.
+const BLESS_COMMAND: &str = "ARACHIS_BLESS=1 cargo test -p arachis-core --test digest_scenarios";
+
+/// Pour: steps before the digest. Early in the DESIGN §8 pour (0.1 s), when the lowest
+/// spheres have reached the floor and pile up, so the history is well populated, while a
+/// debug run stays at about 20 s.
+const POUR_STEPS: u64 = 5_000;
+/// Pour: live contacts required at the digest (about 500 measured), so that the digest covers
+/// a substantial contact history.
+const POUR_MIN_CONTACTS: u32 = 400;
+/// Pour: sphere–sphere contacts required among them (not only floor contacts).
+const POUR_MIN_SPHERE_CONTACTS: u32 = 100;
+/// Clump slide: steps before the digest (80 ms: the chain closes up and hits the stop wall).
+const CLUMP_STEPS: u64 = 4_000;
+/// Moving wall: steps of blade motion after the pile has settled (40 mm of travel).
+const BLADE_STEPS: u64 = 2_000;
+/// Moving wall: live contacts required at the digest.
+const PILE_MIN_CONTACTS: u32 = 40;
+
+/// Owned arenas for one world (the core itself never allocates).
+struct Arenas<S: Scalar> {
+    bodies: Vec<Body<S>>,
+    spheres: Vec<Sphere<S>>,
+    contacts: Vec<ContactSlot<S>>,
+    index: Vec<u32>,
+    cells: Vec<u32>,
+}
+
+impl<S: Scalar> Arenas<S> {
+    fn new(l: StorageLengths) -> Self {
+        Arenas {
+            bodies: vec![Body::default(); l.bodies],
+            spheres: vec![Sphere::default(); l.spheres],
+            contacts: vec![ContactSlot::default(); l.contacts],
+            index: vec![0; l.sphere_index],
+            cells: vec![0; l.cells],
+        }
+    }
+
+    fn storage(&mut self) -> Storage<'_, S> {
+        Storage {
+            bodies: &mut self.bodies,
+            spheres: &mut self.spheres,
+            contacts: &mut self.contacts,
+            sphere_index: &mut self.index,
+            cells: &mut self.cells,
+        }
+    }
+}
+
+/// Live contacts split into (sphere–sphere, sphere–wall).
+fn contact_kinds<S: Scalar>(world: &World<'_, S>) -> (u32, u32) {
+    let (mut spheres, mut walls) = (0, 0);
+    for s in 0..world.spheres().len() as u32 {
+        for slot in world.contact_slots(s) {
+            if slot.partner & arachis_core::contact::WALL_PARTNER_FLAG != 0 {
+                walls += 1;
+            } else {
+                spheres += 1;
+            }
+        }
+    }
+    (spheres, walls)
+}
+
+/// The per-body dump, one line per body.
+fn dump<S: Scalar>(world: &World<'_, S>) -> Vec<String> {
+    world.body_records().map(|r| r.to_string()).collect()
+}
+
+/// What a golden file records.
+#[derive(Debug, PartialEq)]
+struct Golden {
+    steps: u64,
+    digest: u64,
+}
+
+fn golden_path(scenario: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../testdata/digests")
+        .join(format!("{scenario}.txt"))
+}
+
+fn parse_golden(text: &str) -> Option<Golden> {
+    let value = |key: &str| {
+        text.lines()
+            .filter(|l| !l.starts_with('#'))
+            .filter_map(|l| l.split_once('='))
+            .find(|(k, _)| k.trim() == key)
+            .map(|(_, v)| v.trim().to_string())
+    };
+    Some(Golden {
+        steps: value("steps")?.parse().ok()?,
+        digest: u64::from_str_radix(value("digest")?.trim_start_matches("0x"), 16).ok()?,
+    })
+}
+
+fn render_golden(scenario: &str, about: &str, got: &Golden) -> String {
+    let mut s = String::new();
+    for line in about.lines() {
+        writeln!(s, "# {line}").unwrap();
+    }
+    writeln!(
+        s,
+        "# Checked by core/tests/digest_scenarios.rs in debug and release."
+    )
+    .unwrap();
+    writeln!(
+        s,
+        "# Regenerate deliberately, after an intended change only:"
+    )
+    .unwrap();
+    writeln!(s, "#   {BLESS_COMMAND}").unwrap();
+    writeln!(s, "scenario = {scenario}").unwrap();
+    writeln!(s, "scalar = fixed (Q32.32)").unwrap();
+    writeln!(s, "steps = {}", got.steps).unwrap();
+    writeln!(s, "digest = 0x{:016x}", got.digest).unwrap();
+    s
+}
+
+/// Compare `world`'s digest with the golden of `scenario`, or rewrite it when blessing.
+fn check_golden(scenario: &str, about: &str, world: &World<'_, Fx>) {
+    let got = Golden {
+        steps: world.step_count(),
+        digest: world.digest(),
+    };
+    let path = golden_path(scenario);
+    if std::env::var(BLESS_VAR).is_ok_and(|v| v == "1") {
+        std::fs::write(&path, render_golden(scenario, about, &got)).unwrap();
+        eprintln!("blessed {}: {:#018x}", path.display(), got.digest);
+        return;
+    }
+    let expected = std::fs::read_to_string(&path)
+        .ok()
+        .and_then(|t| parse_golden(&t));
+    if expected.as_ref() == Some(&got) {
+        return;
+    }
+    let dump_path = std::env::temp_dir().join(format!("arachis-digest-{scenario}.dump"));
+    let dump_note = match std::fs::write(&dump_path, dump(world).join("\n") + "\n") {
+        Ok(()) => format!("per-body dump of the new state: {}", dump_path.display()),
+        Err(e) => format!("(could not write the per-body dump: {e})"),
+    };
+    panic!(
+        "golden digest of `{scenario}` does not match.\n  file:     {}\n  expected: {}\n  \
+         got:      steps = {}, digest = 0x{:016x}\n  {dump_note}\nIf the change is intended, \
+         regenerate the goldens deliberately with\n  {BLESS_COMMAND}\nand say why in the commit.",
+        path.display(),
+        match expected {
+            Some(e) => format!("steps = {}, digest = 0x{:016x}", e.steps, e.digest),
+            None => "(missing or unreadable file)".to_string(),
+        },
+        got.steps,
+        got.digest,
+    );
+}
+
+#[test]
+fn bench_bed_pour_matches_golden_digest() {
+    let bed = BenchBed::design();
+    let mut arenas = Arenas::<Fx>::new(bed.storage_lengths());
+    let mut world = bed.build(arenas.storage()).unwrap();
+    world.run(POUR_STEPS).unwrap();
+    check_golden(
+        "bench_bed_pour",
+        "DESIGN §8 bench bed (2 000 spheres R 4 mm poured into a steel cylinder R 50 mm),\n\
+         default seed, early in the pour: the lowest spheres have reached the floor.",
+        &world,
+    );
+    let (sphere_contacts, wall_contacts) = contact_kinds(&world);
+    println!("pour: {sphere_contacts} sphere-sphere + {wall_contacts} sphere-wall contacts");
+    assert!(
+        sphere_contacts + wall_contacts >= POUR_MIN_CONTACTS,
+        "only {} contacts at step {POUR_STEPS}: the digest would barely cover contact history",
+        sphere_contacts + wall_contacts
+    );
+    assert!(sphere_contacts >= POUR_MIN_SPHERE_CONTACTS);
+}
+
+#[test]
+fn clump_slide_matches_golden_digest() {
+    let scenario = ClumpSlide::default();
+    let mut arenas = Arenas::<Fx>::new(scenario.storage_lengths());
+    let mut world = scenario.build(arenas.storage()).unwrap();
+    let start: Vec<[f64; 3]> = world.bodies().iter().map(|b| b.position.to_f64()).collect();
+    // Count the steps on which clumps touch each other, to show that they do collide.
+    let mut colliding_steps = 0;
+    for _ in 0..CLUMP_STEPS {
+        world.step().unwrap();
+        colliding_steps += u32::from(contact_kinds(&world).0 > 0);
+    }
+    check_golden(
+        "clump_slide",
+        "Four two- and three-sphere pod clumps sliding down a 35° steel incline into each\n\
+         other and a stop wall (core/src/scenario/clump_slide.rs), default seed.",
+        &world,
+    );
+    println!("clump slide: clump-clump contact on {colliding_steps} of {CLUMP_STEPS} steps");
+    assert!(colliding_steps > 0, "the clumps never collided");
+    for (b, s) in world.bodies().iter().zip(&start) {
+        // Every clump went down the slope (x grows downhill).
+        assert!(b.position.to_f64()[0] > s[0], "a clump did not slide");
+    }
+}
+
+#[test]
+fn moving_wall_pile_matches_golden_digest() {
+    let scenario = MovingWallPile::default();
+    let mut arenas = Arenas::<Fx>::new(scenario.storage_lengths());
+    let mut world = scenario.build(arenas.storage()).unwrap();
+    let blade_start = world.walls()[1].shape;
+    world.run(BLADE_STEPS).unwrap();
+    check_golden(
+        "moving_wall_pile",
+        "A 150-sphere pod pile (R 3 and 4 mm) settled on a steel floor for 6 000 steps, then a\n\
+         plane blade moving through it at 1 m/s (core/src/scenario/moving_wall.rs).",
+        &world,
+    );
+    let (s, w) = contact_kinds(&world);
+    println!("moving wall: {s} sphere-sphere + {w} sphere-wall contacts");
+    assert!(s + w >= PILE_MIN_CONTACTS);
+    assert_ne!(
+        world.walls()[1].shape,
+        blade_start,
+        "the blade did not move"
+    );
+}
+
+/// A short variant of the moving-wall scenario for the property tests below.
+fn short_pile(seed_flip: u64, nudge_body_0: bool) -> (u64, Vec<String>) {
+    let scenario = MovingWallPile {
+        settle_steps: 1_000,
+        seed: MovingWallPile::default().seed ^ seed_flip,
+    };
+    let mut arenas = Arenas::<Fx>::new(scenario.storage_lengths());
+    let mut world = scenario.build(arenas.storage()).unwrap();
+    if nudge_body_0 {
+        // Add one least-significant bit (2⁻³² m/s) to body 0's x velocity: the smallest
+        // change the fixed-point state can carry.
+        let b = *world.body(BodyId(0));
+        let mut v = b.velocity.to_f64();
+        v[0] += (-32f64).exp2();
+        let w_rad_s = b.angular_velocity.to_f64().map(|x| x * 1e3);
+        world.set_body_velocity(BodyId(0), v, w_rad_s).unwrap();
+        let after = world.body(BodyId(0)).velocity.x;
+        assert_eq!(after.raw() - b.velocity.x.raw(), 1, "the nudge is one bit");
+        assert_eq!(world.body(BodyId(0)).angular_velocity, b.angular_velocity);
+    }
+    world.run(500).unwrap();
+    (world.digest(), dump(&world))
+}
+
+#[test]
+fn two_runs_dump_identical_per_body_states() {
+    let (d1, dump1) = short_pile(0, false);
+    let (d2, dump2) = short_pile(0, false);
+    if let Some(i) = dump1.iter().zip(&dump2).position(|(a, b)| a != b) {
+        panic!("runs diverge at body {i}:\n  {}\n  {}", dump1[i], dump2[i]);
+    }
+    assert_eq!(dump1.len(), MovingWallPile::SPHERES as usize);
+    assert_eq!(d1, d2);
+}
+
+#[test]
+fn one_bit_of_input_changes_the_digest() {
+    let (base, _) = short_pile(0, false);
+    let (seed_flipped, _) = short_pile(1, false);
+    let (nudged, nudged_dump) = short_pile(0, true);
+    assert_ne!(
+        base, seed_flipped,
+        "flipping the lowest seed bit left the digest unchanged"
+    );
+    assert_ne!(
+        base, nudged,
+        "a one-bit velocity change left the digest unchanged"
+    );
+    assert_eq!(nudged_dump.len(), MovingWallPile::SPHERES as usize);
+}
