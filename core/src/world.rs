@@ -70,6 +70,15 @@ pub fn quantise_coordinate<S: Scalar>(x: f64, what: &'static str) -> Result<S, S
     Ok(q)
 }
 
+/// Quantise a vector whose components must not round to zero (inertia and its inverse).
+fn q3_nonzero<S: Scalar>(v: [f64; 3], what: &'static str) -> Result<Vec3<S>, SetupError> {
+    Ok(Vec3::new(
+        quantise(v[0], what)?,
+        quantise(v[1], what)?,
+        quantise(v[2], what)?,
+    ))
+}
+
 /// A clump as given by the user: its spheres (world frame at set-up) and initial motion.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ClumpSpec<'s> {
@@ -287,8 +296,8 @@ impl<'a, S: Scalar> World<'a, S> {
             orientation: Quat::IDENTITY,
             mass: quantise(mass_g, "sphere mass")?,
             inv_mass: quantise(1.0 / mass_g, "sphere inverse mass")?,
-            inertia: q3([inertia; 3], 1.0, "sphere inertia")?,
-            inv_inertia: q3([1.0 / inertia; 3], 1.0, "sphere inverse inertia")?,
+            inertia: q3_nonzero([inertia; 3], "sphere inertia")?,
+            inv_inertia: q3_nonzero([1.0 / inertia; 3], "sphere inverse inertia")?,
             first_sphere: self.n_spheres,
             sphere_count: 1,
             is_clump: false,
@@ -427,8 +436,8 @@ impl<'a, S: Scalar> World<'a, S> {
             orientation: Quat::from_f64(q),
             mass: quantise(mass_g, "clump mass")?,
             inv_mass: quantise(1.0 / mass_g, "clump inverse mass")?,
-            inertia: q3(inertia, 1.0, "clump inertia")?,
-            inv_inertia: q3(inertia.map(|i| 1.0 / i), 1.0, "clump inverse inertia")?,
+            inertia: q3_nonzero(inertia, "clump inertia")?,
+            inv_inertia: q3_nonzero(inertia.map(|i| 1.0 / i), "clump inverse inertia")?,
             first_sphere: first,
             sphere_count: spec.spheres.len() as u32,
             is_clump: true,

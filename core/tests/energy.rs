@@ -41,8 +41,7 @@ fn total_energy(before: &Snap, after: &Snap, e_pp: f64, e_pw: f64) -> f64 {
     let s = &before.pos;
     for i in 0..s.len() {
         let p = s[i];
-        for j in i + 1..s.len() {
-            let q = s[j];
+        for &q in &s[i + 1..] {
             let d = ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt();
             let a = 2.0 * R - d;
             if a > 0.0 {
