@@ -20,16 +20,16 @@ mod common;
 
 use arachis_core::prelude::*;
 use arbitrary::Arbitrary;
-use common::{assert_state_valid, outcome, Arenas, MaterialIn, PairIn, Real, Real3};
+use common::{assert_state_valid, outcome, strict, Arenas, MaterialIn, PairIn, Real, Real3};
 use libfuzzer_sys::fuzz_target;
 
 /// Where the second sphere sits relative to the first.
 #[derive(Arbitrary, Debug, Clone, Copy)]
 enum Offset {
+    /// Along `dir` at `dist × (Ri + Rj)` (Near values span 1/16–16 × the contact distance).
+    Along { dir: Real3, dist: Real },
     /// Same centre.
     Coincident,
-    /// Along `dir` at `dist × (Ri + Rj)` (Near values span 0–4 × the contact distance).
-    Along { dir: Real3, dist: Real },
     /// Any offset, m.
     Raw(Real3),
 }
@@ -311,6 +311,9 @@ fn discriminant(e: &StepError) -> &'static str {
     }
 }
 
+/// Below this centre separation (m) fixed and f64 are not compared (finding F1).
+const NEAR_COINCIDENT_M: f64 = 1e-7;
+
 /// Inputs for which Q32.32 in mm-g-ms resolves every quantity to ≲1e-6 relative, so fixed
 /// point and f64 must agree closely after one step.
 fn well_conditioned(inp: &Input) -> bool {
@@ -326,9 +329,25 @@ fn well_conditioned(inp: &Input) -> bool {
             radius,
             velocity,
             spin,
+            offset,
             ..
         } => {
-            inside(radius.get(RADIUS_M), 1e-3, 0.1)
+            // Known finding F1 (reported, regressions/contact_law/
+            // near_coincident_centres_normal_flip): for centres closer than ~1.5e-5 mm, |d|²
+            // underflows Q32.32 and the core takes the coincident-centre normal +z although d
+            // is resolvable, so fixed and f64 push in different directions. Excluded here so
+            // fuzzing goes on past it (ARACHIS_FUZZ_STRICT=1 keeps it); drop this condition
+            // once the core normalises d before squaring.
+            let r_j = radius.get(RADIUS_M);
+            let separation_m = match offset {
+                Offset::Coincident => 1.0,
+                Offset::Along { dist, .. } => {
+                    dist.get(1.0).abs() * (inp.radius.get(RADIUS_M) + r_j)
+                }
+                Offset::Raw(v) => norm(v.get(RADIUS_M)),
+            };
+            (strict() || separation_m >= NEAR_COINCIDENT_M)
+                && inside(r_j, 1e-3, 0.1)
                 && velocity
                     .get(SPEED_M_S)
                     .iter()
