@@ -1,0 +1,66 @@
+//! Micro benchmark of the contact law alone: [`PairParams::evaluate`] on one pod–pod contact
+//! (all Hertz–Mindlin + CDT terms on), fixed point and f64. The broad and narrow phases are
+//! crate-private in `arachis-core`, so they are measured only inside the bench bed.
+//!
+//! Run: `cargo bench -p arachis-benches --bench contact_law`.
+
+use arachis_core::contact::{ContactKinematics, ContactState};
+use arachis_core::material::MaterialSpec;
+use arachis_core::pair::{PairParams, PairSpec};
+use arachis_core::prelude::{Fx, Scalar, Vec3};
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use std::hint::black_box;
+
+/// A pod–pod contact of the settled bed (internal units mm, g, ms): R* 2 mm, overlap 0.018 mm.
+fn kinematics<S: Scalar>() -> ContactKinematics<S> {
+    let r_star = 2.0_f64;
+    let overlap = 0.018_f64;
+    let m_star = 0.078_f64;
+    let a = (r_star * overlap).sqrt();
+    ContactKinematics {
+        normal: Vec3::from_f64([0.0, 0.6, 0.8]),
+        overlap: S::from_f64(overlap),
+        contact_radius: S::from_f64(a),
+        sqrt_a_mstar: S::from_f64((a * m_star).sqrt()),
+        vn: S::from_f64(-0.01),
+        vt: Vec3::from_f64([0.003, 0.0016, -0.0012]),
+        dt: S::from_f64(0.02),
+        lever_i: S::from_f64(3.99),
+        lever_j: S::from_f64(3.99),
+    }
+}
+
+fn bench_law<S: Scalar>(g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>) {
+    let pod = MaterialSpec {
+        youngs_modulus_pa: 8.43e6,
+        poisson: 0.386,
+        density_kg_m3: 582.0,
+    }
+    .validate()
+    .expect("pod material");
+    let params: PairParams<S> =
+        PairParams::new(&pod, &pod, &PairSpec::hertz_mindlin(0.335, 0.854, 0.346));
+    let k = kinematics::<S>();
+    let start = ContactState {
+        delta: Vec3::from_f64([1e-4, -2e-4, 0.0]),
+    };
+    g.bench_function(S::NAME, |b| {
+        b.iter(|| {
+            // Restart from the same history so every iteration does the same work.
+            let mut state = start;
+            let f = params.evaluate(black_box(&k), &mut state);
+            black_box((f, state))
+        })
+    });
+}
+
+fn law(c: &mut Criterion) {
+    let mut g = c.benchmark_group("contact_law_evaluate");
+    g.throughput(Throughput::Elements(1));
+    bench_law::<Fx>(&mut g);
+    bench_law::<f64>(&mut g);
+    g.finish();
+}
+
+criterion_group!(benches, law);
+criterion_main!(benches);
