@@ -388,9 +388,20 @@ fn sphere_pair<S: Scalar>(
     };
     let bi = si.body as usize;
     let bj = sj.body as usize;
-    let r_star_alpha = si.radius * sj.radius * overlap / rs;
+    // R* = RiRj/(Ri+Rj) and m* = mimj/(mi+mj); equal radii/masses (monodisperse beds) take
+    // the exact halving shortcut and skip a division each.
+    let r_star_alpha = if si.radius == sj.radius {
+        si.radius * S::HALF * overlap
+    } else {
+        si.radius * sj.radius * overlap / rs
+    };
     let m_star = if pair.needs_damping() {
-        S::ONE / (ctx.bodies[bi].inv_mass + ctx.bodies[bj].inv_mass)
+        let (bi_, bj_) = (&ctx.bodies[bi], &ctx.bodies[bj]);
+        if bi_.mass == bj_.mass {
+            bi_.mass * S::HALF
+        } else {
+            S::ONE / (bi_.inv_mass + bj_.inv_mass)
+        }
     } else {
         S::ZERO
     };
