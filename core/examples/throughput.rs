@@ -98,6 +98,12 @@ fn run<S: Scalar>(n: usize, steps: u64) {
         }
         pts.push([x, y, z]);
     }
+    // Optional perturbation of the first sphere (nm), to measure chaotic divergence.
+    let nudge_nm: f64 = std::env::var("NUDGE_NM")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(0.0);
+    pts[0][0] += nudge_nm * 1e-9;
     for p in pts {
         let mut s = SphereSpec::at_rest(pod, 0.004, p);
         s.velocity_m_s = [0.0, 0.0, -0.2];
