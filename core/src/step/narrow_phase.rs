@@ -2,7 +2,8 @@
 //! pairs, evaluation of the pair's contact terms, and accumulation of forces and torques.
 //!
 //! Geometry (seed 000 eqs. (1)–(2), DESIGN §2): α = Ri + Rj − |rj − ri|, n̂ = (rj − ri)/|rj − ri|
-//! (n̂ = +z for coincident centres, a deterministic choice), R* = RiRj/(Ri+Rj), m* =
+//! (n̂ = +z for exactly coincident centres, a deterministic choice; near-coincident centres whose
+//! |d|² underflows are normalised after scaling by the largest component), R* = RiRj/(Ri+Rj), m* =
 //! mimj/(mi+mj) (wall: R* = Ri, m* = mi), a = √(R*α). The contact point is
 //! c = ri + n̂(Ri − α/2); lever arms run from each body's centre of mass to c.
 //!
@@ -379,13 +380,17 @@ fn sphere_pair<S: Scalar>(
             material_b: sj.material,
         });
     }
-    let dist = d2.sqrt();
-    let overlap = rs - dist;
+    let mut dist = d2.sqrt();
     let n = if dist > S::ZERO {
         d.scale(S::ONE / dist)
+    } else if let Some((u, len)) = d.normalize_with_len() {
+        // |d|² underflowed (centres within ~1.5e-5 mm) but d itself is resolvable.
+        dist = len;
+        u
     } else {
         Vec3::new(S::ZERO, S::ZERO, S::ONE)
     };
+    let overlap = rs - dist;
     let bi = si.body as usize;
     let bj = sj.body as usize;
     // R* = RiRj/(Ri+Rj) and m* = mimj/(mi+mj); equal radii/masses (monodisperse beds) take
