@@ -426,8 +426,8 @@ impl<'a, S: Scalar> World<'a, S> {
                     material: s.material.0,
                 })
                 .map_err(|_| SetupError::Capacity {
-                    kind: CapacityKind::Spheres,
-                    capacity: 64,
+                    kind: CapacityKind::ClumpSpheres,
+                    capacity: MAX_CLUMP_SPHERES as u32,
                 })?;
         }
         let body = Body {
