@@ -235,8 +235,21 @@ impl<S: Scalar> World<'_, S> {
             let cz = c / (dx * dy);
             // Same cell: partners after i in the sorted order.
             let end = cells[c as usize + 1] as usize;
+            let si = &spheres[i];
+            let (pi, ri, body_i) = (si.position, si.radius, si.body);
+            // Cheap per-axis rejection with sphere i's data hoisted; the full test and the
+            // contact evaluation run only for the few candidates that pass.
+            let near = |sj: &Sphere<S>| -> bool {
+                let rs = ri + sj.radius;
+                sj.body != body_i
+                    && (sj.position.x - pi.x).abs() < rs
+                    && (sj.position.y - pi.y).abs() < rs
+                    && (sj.position.z - pi.z).abs() < rs
+            };
             for &j in &sorted[idx + 1..end] {
-                sphere_pair(&mut ctx, spheres, pairs, i, j as usize)?;
+                if near(&spheres[j as usize]) {
+                    sphere_pair(&mut ctx, spheres, pairs, i, j as usize)?;
+                }
             }
             for off in HALF_NEIGHBOURS.iter() {
                 let nx = cx as i64 + off[0] as i64;
@@ -254,7 +267,9 @@ impl<S: Scalar> World<'_, S> {
                 let nc = ((nz as u32 * dy + ny as u32) * dx + nx as u32) as usize;
                 let (s, e) = (cells[nc] as usize, cells[nc + 1] as usize);
                 for &j in &sorted[s..e] {
-                    sphere_pair(&mut ctx, spheres, pairs, i, j as usize)?;
+                    if near(&spheres[j as usize]) {
+                        sphere_pair(&mut ctx, spheres, pairs, i, j as usize)?;
+                    }
                 }
             }
         }
@@ -340,7 +355,7 @@ impl<S: Scalar> World<'_, S> {
 }
 
 /// Test one candidate sphere pair and evaluate it if in contact.
-#[inline(always)]
+#[inline(never)]
 fn sphere_pair<S: Scalar>(
     ctx: &mut Ctx<'_, S>,
     spheres: &[Sphere<S>],
