@@ -9,5 +9,6 @@ pub mod doe;
 pub mod io;
 pub mod lab;
 pub mod optimize;
+pub mod shapes;
 pub mod stats;
 pub mod vtk;

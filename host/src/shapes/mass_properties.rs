@@ -1,0 +1,119 @@
+//! Volume, mass, centre of mass and principal moments of inertia of a solid of uniform
+//! density, by midpoint-rule integration over a voxel grid, and exactly for an ellipsoid.
+//!
+//! Each voxel whose centre is inside counts as a small cube of volume h³ at its centre,
+//! carrying its own moment m h²/6 about every axis through its centre (a cube of edge h).
+//! The inertia tensor about the centre of mass is I = ρ (tr(S) 1 − S) with
+//! S = ∫ (p − c)(p − c)ᵀ dV; its eigenvalues (nalgebra's symmetric eigen-solver) are the
+//! principal moments, reported in ascending order.
+//!
+//! ```
+//! use arachis::shapes::{ellipsoid_mass_properties, POD_DENSITY_KG_M3};
+//! let m = ellipsoid_mass_properties([5.0, 5.0, 5.0], POD_DENSITY_KG_M3);
+//! // A 10 mm ball: V = 4/3·π·125 mm³.
+//! assert!((m.volume_mm3 - 523.598_775_598).abs() < 1e-6);
+//! ```
+
+use std::f64::consts::PI;
+
+use nalgebra::{Matrix3, SymmetricEigen, Vector3};
+use serde::Serialize;
+
+use super::voxel_grid::VoxelGrid;
+
+/// Density of pods at harvest (water content 36.72%), kg/m³ (seed 000 §3.1.1).
+pub const POD_DENSITY_KG_M3: f64 = 582.36;
+
+/// mm³ → m³.
+const M3_PER_MM3: f64 = 1e-9;
+/// mm⁵ (an integral of r² dV) → m⁵.
+const M5_PER_MM5: f64 = 1e-15;
+
+/// Mass properties of a uniform solid in its body frame.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MassProperties {
+    /// Volume, mm³.
+    pub volume_mm3: f64,
+    /// Mass m = ρV, kg.
+    pub mass_kg: f64,
+    /// Centre of mass, mm.
+    pub centre_of_mass_mm: [f64; 3],
+    /// Principal moments of inertia about the centre of mass, kg·m², ascending.
+    pub principal_inertia_kg_m2: [f64; 3],
+}
+
+/// Mass properties of the voxels flagged `inside` in `grid`, at density `density_kg_m3`.
+pub fn voxel_mass_properties(
+    grid: &VoxelGrid,
+    inside: &[bool],
+    density_kg_m3: f64,
+) -> MassProperties {
+    let [nx, ny, nz] = grid.dims;
+    // Sums relative to the grid's centre keep the second moments free of cancellation.
+    let origin = [0, 1, 2].map(|a| grid.min_mm[a] + 0.5 * grid.dims[a] as f64 * grid.spacing_mm);
+    let mut count = 0.0;
+    let mut first = Vector3::zeros();
+    let mut second = Matrix3::zeros();
+    for k in 0..nz {
+        for j in 0..ny {
+            let row = grid.index(0, j, k);
+            for i in 0..nx {
+                if inside[row + i] {
+                    let c = grid.centre_mm(i, j, k);
+                    let p = Vector3::new(c[0] - origin[0], c[1] - origin[1], c[2] - origin[2]);
+                    count += 1.0;
+                    first += p;
+                    second += p * p.transpose();
+                }
+            }
+        }
+    }
+    let h = grid.spacing_mm;
+    let dv = grid.voxel_volume_mm3();
+    let volume_mm3 = count * dv;
+    if count == 0.0 {
+        return MassProperties {
+            volume_mm3: 0.0,
+            mass_kg: 0.0,
+            centre_of_mass_mm: origin,
+            principal_inertia_kg_m2: [0.0; 3],
+        };
+    }
+    let mean = first / count;
+    // S about the centre of mass, plus each cube's own h²/12 per axis.
+    let s = (second / count - mean * mean.transpose()) * volume_mm3
+        + Matrix3::identity() * (volume_mm3 * h * h / 12.0);
+    let com = [0, 1, 2].map(|a| mean[a] + origin[a]);
+    from_second_moment(volume_mm3, com, s, density_kg_m3)
+}
+
+/// Mass properties from volume (mm³), centre (mm) and S = ∫(p−c)(p−c)ᵀ dV (mm⁵).
+fn from_second_moment(
+    volume_mm3: f64,
+    centre_of_mass_mm: [f64; 3],
+    s_mm5: Matrix3<f64>,
+    density_kg_m3: f64,
+) -> MassProperties {
+    let inertia = (Matrix3::identity() * s_mm5.trace() - s_mm5) * (density_kg_m3 * M5_PER_MM5);
+    let mut moments: Vec<f64> = SymmetricEigen::new(inertia)
+        .eigenvalues
+        .iter()
+        .copied()
+        .collect();
+    moments.sort_by(f64::total_cmp);
+    MassProperties {
+        volume_mm3,
+        mass_kg: density_kg_m3 * volume_mm3 * M3_PER_MM3,
+        centre_of_mass_mm,
+        principal_inertia_kg_m2: [moments[0], moments[1], moments[2]],
+    }
+}
+
+/// Exact mass properties of the ellipsoid with semi-axes `semi_axes_mm` (a, b, c) centred
+/// at the origin: V = 4/3·π·abc, S = diag(a², b², c²)·V/5, so I_x = m(b² + c²)/5 etc.
+pub fn ellipsoid_mass_properties(semi_axes_mm: [f64; 3], density_kg_m3: f64) -> MassProperties {
+    let [a, b, c] = semi_axes_mm;
+    let volume_mm3 = 4.0 / 3.0 * PI * a * b * c;
+    let s = Matrix3::from_diagonal(&Vector3::new(a * a, b * b, c * c)) * (volume_mm3 / 5.0);
+    from_second_moment(volume_mm3, [0.0; 3], s, density_kg_m3)
+}

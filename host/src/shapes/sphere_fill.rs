@@ -1,0 +1,256 @@
+//! Filling a solid with overlapping spheres, deterministically.
+//!
+//! Algorithm (greedy maximal inscribed spheres):
+//! 1. voxelize the solid on a grid of `resolution` voxels along its longest edge;
+//! 2. take, for every inside voxel, the distance D to the nearest outside voxel centre
+//!    (exact Euclidean distance transform); the sphere centred there with radius
+//!    r = D − h/2 (h the voxel edge) is inscribed, since the surface lies about half a
+//!    voxel short of the first outside centre;
+//! 3. repeatedly add the candidate sphere that covers the most not-yet-covered inside voxel
+//!    centres (lazy greedy: covered counts only fall as spheres are added, so a stale count
+//!    is an upper bound), ties going to the candidate nearest the grid's centre voxel, then
+//!    to the lowest voxel index (so a symmetric pod gets a centred first sphere).
+//!
+//! The fillings are nested: the first n spheres of a longer filling are the n-sphere
+//! filling, so the covered volume never falls as spheres are added. "Smoothness" is the
+//! covered fraction of the solid's voxels ([`FillTarget::Coverage`]).
+//!
+//! ```
+//! use arachis::shapes::{fill_with_spheres, FillOptions, FillTarget, PodKind, PodShape};
+//! let pod = PodShape::seed001_mean(PodKind::SingleGrain);
+//! let options = FillOptions { resolution: 24, target: FillTarget::SphereCount(1) };
+//! let filling = fill_with_spheres(&pod, &options).unwrap();
+//! // One sphere: centred, as thick as the pod is (radius ≈ H/2 = 7.88 mm).
+//! assert!((filling.spheres[0].radius_mm - 7.88).abs() < 0.8);
+//! ```
+
+use std::cmp::Reverse;
+use std::collections::{BTreeMap, BinaryHeap};
+
+use super::distance_transform::squared_distance_to_outside;
+use super::error::ShapeError;
+use super::solid::Solid;
+use super::voxel_grid::{Aabb, VoxelGrid};
+
+/// Default voxels along the solid's longest edge when filling.
+pub const DEFAULT_FILL_RESOLUTION: usize = 64;
+/// Fewest voxels along the longest edge that resolve a pod at all.
+pub const MIN_FILL_RESOLUTION: usize = 4;
+
+/// One sphere of a filling, body frame, mm.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sphere {
+    /// Centre, mm.
+    pub centre_mm: [f64; 3],
+    /// Radius, mm.
+    pub radius_mm: f64,
+}
+
+/// When to stop adding spheres.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FillTarget {
+    /// Exactly this many spheres (fewer only if the solid is covered earlier).
+    SphereCount(usize),
+    /// Stop once this fraction (0, 1] of the solid's voxels is covered, or at `max_spheres`.
+    Coverage {
+        /// Covered fraction of the solid's volume to reach ("smoothness").
+        fraction: f64,
+        /// Upper bound on the sphere count.
+        max_spheres: usize,
+    },
+}
+
+/// How to fill.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FillOptions {
+    /// Voxels along the solid's longest edge (finer finds better spheres, more slowly).
+    pub resolution: usize,
+    /// When to stop.
+    pub target: FillTarget,
+}
+
+/// The spheres filling a solid, in the solid's body frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SphereFilling {
+    /// Spheres in the order the greedy placement chose them.
+    pub spheres: Vec<Sphere>,
+    /// Fraction of the solid's fill-grid voxels covered by the spheres.
+    pub covered_fraction: f64,
+    /// Voxel edge of the fill grid, mm.
+    pub fill_spacing_mm: f64,
+}
+
+impl SphereFilling {
+    /// A box holding every sphere, mm (`None` for an empty filling).
+    pub fn bounds_mm(&self) -> Option<Aabb> {
+        self.spheres
+            .iter()
+            .map(|s| Aabb {
+                min_mm: s.centre_mm.map(|c| c - s.radius_mm),
+                max_mm: s.centre_mm.map(|c| c + s.radius_mm),
+            })
+            .reduce(|a, b| a.union(&b))
+    }
+
+    /// True when `p_mm` lies in at least one sphere.
+    pub fn contains_mm(&self, p_mm: [f64; 3]) -> bool {
+        self.spheres.iter().any(|s| {
+            let d2: f64 = (0..3).map(|a| (p_mm[a] - s.centre_mm[a]).powi(2)).sum();
+            d2 <= s.radius_mm * s.radius_mm
+        })
+    }
+}
+
+fn invalid(name: &'static str, value: f64, reason: &'static str) -> ShapeError {
+    ShapeError::InvalidParameter {
+        name,
+        value,
+        reason,
+    }
+}
+
+/// Fills `solid` with overlapping spheres (module notes).
+pub fn fill_with_spheres(
+    solid: &dyn Solid,
+    options: &FillOptions,
+) -> Result<SphereFilling, ShapeError> {
+    if options.resolution < MIN_FILL_RESOLUTION {
+        return Err(invalid(
+            "fill resolution (voxels along the longest edge)",
+            options.resolution as f64,
+            "must be at least 4",
+        ));
+    }
+    let (max_spheres, fraction) = match options.target {
+        FillTarget::SphereCount(n) => (n, 1.0),
+        FillTarget::Coverage {
+            fraction,
+            max_spheres,
+        } => {
+            if !(fraction > 0.0 && fraction <= 1.0) {
+                return Err(invalid("coverage fraction", fraction, "must lie in (0, 1]"));
+            }
+            (max_spheres, fraction)
+        }
+    };
+    if max_spheres == 0 {
+        return Err(invalid("sphere count", 0.0, "must be at least 1"));
+    }
+    let grid = VoxelGrid::covering(&solid.bounds_mm(), options.resolution, 1);
+    let inside = solid.voxelize(&grid);
+    let total = inside.iter().filter(|&&x| x).count();
+    if total == 0 {
+        return Err(invalid(
+            "fill resolution (voxels along the longest edge)",
+            options.resolution as f64,
+            "no voxel centre falls inside the solid; raise the resolution",
+        ));
+    }
+    let dist2 = squared_distance_to_outside(&grid, &inside);
+    let radius_vox = |index: usize| dist2[index].sqrt() - 0.5;
+
+    // Upper bounds: an uncovered ball of radius r holds ball_count(r) voxels; cached by D².
+    let mut ball_counts: BTreeMap<u64, usize> = BTreeMap::new();
+    // Heap entries: (covered count or its upper bound, tie-breaks, stamp = spheres placed
+    // when the count was taken).
+    let mut heap: BinaryHeap<HeapEntry> = BinaryHeap::new();
+    let [nx, ny, nz] = grid.dims;
+    let off_centre = |index: usize| {
+        let d = |n: usize, half: usize| n.abs_diff(half).pow(2);
+        d(index % nx, nx / 2) + d((index / nx) % ny, ny / 2) + d(index / (nx * ny), nz / 2)
+    };
+    for (index, &is_in) in inside.iter().enumerate() {
+        if is_in {
+            let r = radius_vox(index);
+            let bound = *ball_counts
+                .entry(dist2[index] as u64)
+                .or_insert_with(|| ball_offsets(r).len());
+            // Stamp usize::MAX: never fresh, so it is recounted before being chosen.
+            heap.push((bound, Reverse((off_centre(index), index)), usize::MAX));
+        }
+    }
+
+    let target = ((fraction * total as f64).ceil() as usize).min(total);
+    let mut covered = vec![false; grid.len()];
+    let mut covered_count = 0usize;
+    let mut chosen: Vec<usize> = Vec::new();
+    while chosen.len() < max_spheres && covered_count < target {
+        let Some((gain, Reverse((tie, index)), stamp)) = heap.pop() else {
+            break;
+        };
+        if stamp != chosen.len() {
+            let fresh = ball_indices(&grid, index, radius_vox(index))
+                .filter(|&v| !covered[v])
+                .count();
+            if fresh > 0 {
+                heap.push((fresh, Reverse((tie, index)), chosen.len()));
+            }
+            continue;
+        }
+        debug_assert!(gain > 0);
+        for v in ball_indices(&grid, index, radius_vox(index)) {
+            if !covered[v] {
+                covered[v] = true;
+                covered_count += 1;
+            }
+        }
+        chosen.push(index);
+    }
+
+    let spheres = chosen
+        .iter()
+        .map(|&index| {
+            let (i, j, k) = (index % nx, (index / nx) % ny, index / (nx * ny));
+            Sphere {
+                centre_mm: grid.centre_mm(i, j, k),
+                radius_mm: radius_vox(index) * grid.spacing_mm,
+            }
+        })
+        .collect();
+    Ok(SphereFilling {
+        spheres,
+        covered_fraction: covered_count as f64 / total as f64,
+        fill_spacing_mm: grid.spacing_mm,
+    })
+}
+
+/// A candidate in the lazy-greedy queue: (covered count or its upper bound,
+/// Reverse((squared lattice distance to the centre voxel, voxel index)), stamp).
+type HeapEntry = (usize, Reverse<(usize, usize)>, usize);
+
+/// Lattice offsets within `radius_vox` of a lattice point (the same test everywhere).
+fn ball_offsets(radius_vox: f64) -> Vec<[i64; 3]> {
+    let reach = radius_vox.floor().max(0.0) as i64;
+    let r2 = radius_vox * radius_vox;
+    let mut out = Vec::new();
+    for dk in -reach..=reach {
+        for dj in -reach..=reach {
+            for di in -reach..=reach {
+                if ((di * di + dj * dj + dk * dk) as f64) <= r2 {
+                    out.push([di, dj, dk]);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Linear indices of the voxels of `grid` within `radius_vox` of voxel `index`. The ball is
+/// inscribed, so it never leaves the grid (the grid has an outside margin).
+fn ball_indices(
+    grid: &VoxelGrid,
+    index: usize,
+    radius_vox: f64,
+) -> impl Iterator<Item = usize> + '_ {
+    let [nx, ny, _] = grid.dims;
+    let (i, j, k) = (
+        (index % nx) as i64,
+        ((index / nx) % ny) as i64,
+        (index / (nx * ny)) as i64,
+    );
+    ball_offsets(radius_vox)
+        .into_iter()
+        .map(move |[di, dj, dk]| {
+            grid.index((i + di) as usize, (j + dj) as usize, (k + dk) as usize)
+        })
+}
