@@ -51,23 +51,36 @@ pub fn voxel_mass_properties(
     let [nx, ny, nz] = grid.dims;
     // Sums relative to the grid's centre keep the second moments free of cancellation.
     let origin = [0, 1, 2].map(|a| grid.min_mm[a] + 0.5 * grid.dims[a] as f64 * grid.spacing_mm);
+    // Plain sums (not nalgebra products per voxel): this loop runs millions of times.
     let mut count = 0.0;
-    let mut first = Vector3::zeros();
-    let mut second = Matrix3::zeros();
+    let mut first = [0.0f64; 3];
+    // xx, yy, zz, xy, xz, yz
+    let mut second = [0.0f64; 6];
     for k in 0..nz {
+        let z = grid.coord_mm(2, k) - origin[2];
         for j in 0..ny {
+            let y = grid.coord_mm(1, j) - origin[1];
             let row = grid.index(0, j, k);
             for i in 0..nx {
                 if inside[row + i] {
-                    let c = grid.centre_mm(i, j, k);
-                    let p = Vector3::new(c[0] - origin[0], c[1] - origin[1], c[2] - origin[2]);
+                    let x = grid.coord_mm(0, i) - origin[0];
                     count += 1.0;
-                    first += p;
-                    second += p * p.transpose();
+                    first[0] += x;
+                    first[1] += y;
+                    first[2] += z;
+                    second[0] += x * x;
+                    second[1] += y * y;
+                    second[2] += z * z;
+                    second[3] += x * y;
+                    second[4] += x * z;
+                    second[5] += y * z;
                 }
             }
         }
     }
+    let first = Vector3::from(first);
+    let [xx, yy, zz, xy, xz, yz] = second;
+    let second = Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
     let h = grid.spacing_mm;
     let dv = grid.voxel_volume_mm3();
     let volume_mm3 = count * dv;

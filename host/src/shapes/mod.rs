@@ -24,6 +24,7 @@
 //! assert!(report.volume_rel_error < 0.0); // inscribed spheres fall short of the pod
 //! ```
 
+pub mod ball_cover;
 pub mod distance_transform;
 pub mod error;
 pub mod filling_csv;

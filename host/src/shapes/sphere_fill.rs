@@ -27,6 +27,8 @@
 use std::cmp::Reverse;
 use std::collections::{BTreeMap, BinaryHeap};
 
+use super::ball_cover::{ball_runs, ball_volume, CoveredSet, Run};
+
 use super::distance_transform::squared_distance_to_outside;
 use super::error::ShapeError;
 use super::solid::Solid;
@@ -149,51 +151,56 @@ pub fn fill_with_spheres(
     let dist2 = squared_distance_to_outside(&grid, &inside);
     let radius_vox = |index: usize| dist2[index].sqrt() - 0.5;
 
-    // Upper bounds: an uncovered ball of radius r holds ball_count(r) voxels; cached by D².
-    let mut ball_counts: BTreeMap<u64, usize> = BTreeMap::new();
     // Heap entries: (covered count or its upper bound, tie-breaks, stamp = spheres placed
     // when the count was taken).
     let mut heap: BinaryHeap<HeapEntry> = BinaryHeap::new();
     let [nx, ny, nz] = grid.dims;
-    let off_centre = |index: usize| {
-        let d = |n: usize, half: usize| n.abs_diff(half).pow(2);
-        d(index % nx, nx / 2) + d((index / nx) % ny, ny / 2) + d(index / (nx * ny), nz / 2)
+    let voxel = |index: usize| {
+        (
+            (index % nx) as i64,
+            ((index / nx) % ny) as i64,
+            (index / (nx * ny)) as i64,
+        )
     };
+    let off_centre = |index: usize| {
+        let (i, j, k) = voxel(index);
+        let d = |n: i64, size: usize| n.abs_diff(size as i64 / 2).pow(2) as usize;
+        d(i, nx) + d(j, ny) + d(k, nz)
+    };
+    // Balls depend only on D², an integer: compute each distinct one once.
+    let mut runs_by_d2: BTreeMap<u64, Vec<Run>> = BTreeMap::new();
     for (index, &is_in) in inside.iter().enumerate() {
         if is_in {
-            let r = radius_vox(index);
-            let bound = *ball_counts
+            let runs = runs_by_d2
                 .entry(dist2[index] as u64)
-                .or_insert_with(|| ball_offsets(r).len());
-            // Stamp usize::MAX: never fresh, so it is recounted before being chosen.
-            heap.push((bound, Reverse((off_centre(index), index)), usize::MAX));
+                .or_insert_with(|| ball_runs(radius_vox(index)));
+            // Upper bound: the whole ball uncovered. Stamp usize::MAX is never fresh, so
+            // the count is taken before the candidate can be chosen.
+            heap.push((
+                ball_volume(runs),
+                Reverse((off_centre(index), index)),
+                usize::MAX,
+            ));
         }
     }
 
     let target = ((fraction * total as f64).ceil() as usize).min(total);
-    let mut covered = vec![false; grid.len()];
-    let mut covered_count = 0usize;
+    let mut covered = CoveredSet::new(&grid);
     let mut chosen: Vec<usize> = Vec::new();
-    while chosen.len() < max_spheres && covered_count < target {
+    while chosen.len() < max_spheres && covered.count() < target {
         let Some((gain, Reverse((tie, index)), stamp)) = heap.pop() else {
             break;
         };
+        let runs = &runs_by_d2[&(dist2[index] as u64)];
         if stamp != chosen.len() {
-            let fresh = ball_indices(&grid, index, radius_vox(index))
-                .filter(|&v| !covered[v])
-                .count();
+            let fresh = covered.uncovered_in(voxel(index), runs);
             if fresh > 0 {
                 heap.push((fresh, Reverse((tie, index)), chosen.len()));
             }
             continue;
         }
         debug_assert!(gain > 0);
-        for v in ball_indices(&grid, index, radius_vox(index)) {
-            if !covered[v] {
-                covered[v] = true;
-                covered_count += 1;
-            }
-        }
+        covered.cover(voxel(index), runs);
         chosen.push(index);
     }
 
@@ -209,7 +216,7 @@ pub fn fill_with_spheres(
         .collect();
     Ok(SphereFilling {
         spheres,
-        covered_fraction: covered_count as f64 / total as f64,
+        covered_fraction: covered.count() as f64 / total as f64,
         fill_spacing_mm: grid.spacing_mm,
     })
 }
@@ -217,40 +224,3 @@ pub fn fill_with_spheres(
 /// A candidate in the lazy-greedy queue: (covered count or its upper bound,
 /// Reverse((squared lattice distance to the centre voxel, voxel index)), stamp).
 type HeapEntry = (usize, Reverse<(usize, usize)>, usize);
-
-/// Lattice offsets within `radius_vox` of a lattice point (the same test everywhere).
-fn ball_offsets(radius_vox: f64) -> Vec<[i64; 3]> {
-    let reach = radius_vox.floor().max(0.0) as i64;
-    let r2 = radius_vox * radius_vox;
-    let mut out = Vec::new();
-    for dk in -reach..=reach {
-        for dj in -reach..=reach {
-            for di in -reach..=reach {
-                if ((di * di + dj * dj + dk * dk) as f64) <= r2 {
-                    out.push([di, dj, dk]);
-                }
-            }
-        }
-    }
-    out
-}
-
-/// Linear indices of the voxels of `grid` within `radius_vox` of voxel `index`. The ball is
-/// inscribed, so it never leaves the grid (the grid has an outside margin).
-fn ball_indices(
-    grid: &VoxelGrid,
-    index: usize,
-    radius_vox: f64,
-) -> impl Iterator<Item = usize> + '_ {
-    let [nx, ny, _] = grid.dims;
-    let (i, j, k) = (
-        (index % nx) as i64,
-        ((index / nx) % ny) as i64,
-        (index / (nx * ny)) as i64,
-    );
-    ball_offsets(radius_vox)
-        .into_iter()
-        .map(move |[di, dj, dk]| {
-            grid.index((i + di) as usize, (j + dj) as usize, (k + dk) as usize)
-        })
-}

@@ -1,0 +1,136 @@
+//! Sphere fillings of the three pod shapes: errors fall as spheres are added, the seed 001
+//! pod's mass against seed 000's 100-pod mass, determinism, CSV and SVG output.
+
+use arachis::shapes::*;
+
+/// Fill grid: voxels along the pod's length (h = 34.27/64 = 0.535 mm).
+const FILL_RESOLUTION: usize = 64;
+/// Report grid: voxels along the pod's length (h = 0.214 mm).
+const REPORT_RESOLUTION: usize = 160;
+/// Seed 000 §2.2.1: "The weight of one hundred pods is 227.7 g".
+const HUNDRED_POD_MASS_G: f64 = 227.7;
+/// Sphere counts of the convergence test.
+const COUNTS: [usize; 4] = [1, 3, 7, 15];
+
+fn fill(solid: &dyn Solid, target: FillTarget) -> SphereFilling {
+    fill_with_spheres(
+        solid,
+        &FillOptions {
+            resolution: FILL_RESOLUTION,
+            target,
+        },
+    )
+    .unwrap()
+}
+
+#[test]
+fn filling_errors_fall_as_the_sphere_count_rises() {
+    for kind in PodKind::ALL {
+        let pod = PodShape::seed001_mean(kind);
+        let reports: Vec<FillingReport> = COUNTS
+            .iter()
+            .map(|&n| {
+                let f = fill(&pod, FillTarget::SphereCount(n));
+                assert_eq!(f.spheres.len(), n);
+                filling_report(&pod, &f, REPORT_RESOLUTION, POD_DENSITY_KG_M3)
+            })
+            .collect();
+        for (n, r) in COUNTS.iter().zip(&reports) {
+            println!(
+                "{:>12} {n:>2} spheres: volume {:+.4}, COM offset/L {:.4}, inertia {:+.4} {:+.4} {:+.4}",
+                kind.name(),
+                r.volume_rel_error,
+                r.centre_of_mass_rel_error,
+                r.inertia_rel_error[0],
+                r.inertia_rel_error[1],
+                r.inertia_rel_error[2]
+            );
+        }
+        for pair in reports.windows(2) {
+            assert!(pair[1].volume_rel_error.abs() < pair[0].volume_rel_error.abs());
+            assert!(pair[1].max_inertia_rel_error() < pair[0].max_inertia_rel_error());
+        }
+    }
+}
+
+#[test]
+fn seed001_pod_mass_against_the_hundred_pod_mass() {
+    let measured_g = HUNDRED_POD_MASS_G / 100.0;
+    for kind in PodKind::ALL {
+        let pod = PodShape::seed001_mean(kind);
+        let f = fill(
+            &pod,
+            FillTarget::Coverage {
+                fraction: 0.95,
+                max_spheres: 400,
+            },
+        );
+        let r = filling_report(&pod, &f, REPORT_RESOLUTION, POD_DENSITY_KG_M3);
+        let analytic_g = POD_DENSITY_KG_M3 * pod.analytic_volume_mm3() * 1e-6;
+        let exact_g = r.exact.mass_kg * 1e3;
+        let fill_g = r.filling.mass_kg * 1e3;
+        println!(
+            "{:>12}: {} spheres, solid {exact_g:.3} g (closed form {analytic_g:.3} g), filling \
+             {fill_g:.3} g; measured 2.277 g/pod: solid {:+.1}%, filling {:+.1}%",
+            kind.name(),
+            f.spheres.len(),
+            100.0 * (exact_g / measured_g - 1.0),
+            100.0 * (fill_g / measured_g - 1.0)
+        );
+        // The grid mass is ρV of the closed-form volume (grid tolerance 1e-3).
+        assert!((exact_g / analytic_g - 1.0).abs() < 1e-3);
+        // The solid pod of mean dimensions is heavier than the mean measured pod: measured
+        // 2.277 g at 582.36 kg/m³ is 3910 mm³, 0.396 of the 34.27 × 18.29 × 15.76 mm box,
+        // while an ellipsoid fills π/6 = 0.524 of it (+32%) and our two-lobe shapes more
+        // (+48%). Reasons: the dimensions (seed 001, Huayu varieties, 2025) and the mass
+        // (seed 000, Yuhua 18, 2024) come from different pods; the mean of L·W·H exceeds
+        // the product of the means; real pods taper to a beak. Not a fault of the filling.
+        assert!(exact_g > measured_g && fill_g > measured_g);
+    }
+}
+
+#[test]
+fn filling_is_deterministic_and_written_as_csv_and_svg() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut panels_data = Vec::new();
+    for kind in PodKind::ALL {
+        let pod = PodShape::seed001_mean(kind);
+        let a = fill(&pod, FillTarget::SphereCount(15));
+        let b = fill(&pod, FillTarget::SphereCount(15));
+        assert_eq!(filling_csv(&a), filling_csv(&b));
+        let path = dir.path().join(format!("{}.csv", kind.name()));
+        write_filling_csv(&path, &a).unwrap();
+        assert_eq!(read_filling_csv(&path).unwrap(), a.spheres);
+        panels_data.push((pod, a, format!("{}, 15 spheres", kind.name())));
+    }
+    let panels: Vec<PicturePanel> = panels_data
+        .iter()
+        .map(|(pod, f, label)| PicturePanel {
+            label,
+            filling: f,
+            outline: Some(pod),
+        })
+        .collect();
+    let svg_path = dir.path().join("fillings.svg");
+    write_fillings_svg(&svg_path, &panels).unwrap();
+    let svg = std::fs::read_to_string(&svg_path).unwrap();
+    assert!(svg.starts_with("<svg"));
+    // Each sphere drawn twice (fill, edge) in two views: 3 shapes × 15 × 4 circles.
+    assert_eq!(svg.matches("<circle").count(), 3 * 15 * 4);
+    assert!(svg.contains("cocoon, 15 spheres"));
+}
+
+#[test]
+fn bad_fill_options_are_rejected() {
+    let pod = PodShape::seed001_mean(PodKind::Normal);
+    let bad = |resolution, target| fill_with_spheres(&pod, &FillOptions { resolution, target });
+    assert!(bad(2, FillTarget::SphereCount(3)).is_err());
+    assert!(bad(32, FillTarget::SphereCount(0)).is_err());
+    let coverage = |fraction| FillTarget::Coverage {
+        fraction,
+        max_spheres: 10,
+    };
+    assert!(bad(32, coverage(0.0)).is_err());
+    assert!(bad(32, coverage(1.5)).is_err());
+    assert!(bad(32, coverage(f64::NAN)).is_err());
+}
