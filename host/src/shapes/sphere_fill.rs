@@ -3,9 +3,13 @@
 //! Algorithm (greedy maximal inscribed spheres):
 //! 1. voxelize the solid on a grid of `resolution` voxels along its longest edge;
 //! 2. take, for every inside voxel, the distance D to the nearest outside voxel centre
-//!    (exact Euclidean distance transform); the sphere centred there with radius
-//!    r = D − h/2 (h the voxel edge) is inscribed, since the surface lies about half a
-//!    voxel short of the first outside centre;
+//!    (exact Euclidean distance transform), in voxel units; the candidate sphere centred
+//!    there has radius r = √(D² − ½)·h (h the voxel edge). D² is an integer, so this ball
+//!    holds exactly the voxel centres closer than D: all inside. D itself estimates the
+//!    distance to the surface: near a curved or oblique surface the lattice directions are
+//!    dense and the nearest outside centre lies just beyond it. (The earlier choice
+//!    r = (D − ½)h fell short by h/2 on curved surfaces: −4% volume on a 5 mm icosphere at
+//!    64 voxels; on a face aligned with the grid, r overshoots by up to h, h/2 on average);
 //! 3. repeatedly add the candidate sphere that covers the most not-yet-covered inside voxel
 //!    centres (lazy greedy: covered counts only fall as spheres are added, so a stale count
 //!    is an upper bound), ties going to the candidate nearest the grid's centre voxel, then
@@ -149,7 +153,8 @@ pub fn fill_with_spheres(
         ));
     }
     let dist2 = squared_distance_to_outside(&grid, &inside);
-    let radius_vox = |index: usize| dist2[index].sqrt() - 0.5;
+    // Squared lattice distances are integers: r² = D² − ½ keeps exactly those below D².
+    let radius_vox = |index: usize| (dist2[index] - 0.5).sqrt();
 
     // Heap entries: (covered count or its upper bound, tie-breaks, stamp = spheres placed
     // when the count was taken).
