@@ -121,6 +121,45 @@ fn filling_is_deterministic_and_written_as_csv_and_svg() {
 }
 
 #[test]
+fn higher_smoothness_takes_more_spheres_and_errs_less() {
+    let pod = PodShape::seed001_mean(PodKind::Normal);
+    let mut last: Option<(usize, f64)> = None;
+    for fraction in [0.8, 0.9, 0.95, 0.98] {
+        let f = fill(
+            &pod,
+            FillTarget::Coverage {
+                fraction,
+                max_spheres: 1000,
+            },
+        );
+        assert!(f.covered_fraction >= fraction);
+        let r = filling_report(&pod, &f, REPORT_RESOLUTION, POD_DENSITY_KG_M3);
+        println!("coverage {fraction}: {} spheres\n{r}", f.spheres.len());
+        let json = serde_json::to_value(r).unwrap();
+        assert_eq!(json["volume_rel_error"].as_f64(), Some(r.volume_rel_error));
+        if let Some((n, err)) = last {
+            assert!(f.spheres.len() > n && r.volume_rel_error.abs() < err);
+        }
+        last = Some((f.spheres.len(), r.volume_rel_error.abs()));
+    }
+}
+
+#[test]
+fn svg_into_a_missing_directory_fails_without_a_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let pod = PodShape::seed001_mean(PodKind::Cocoon);
+    let f = fill(&pod, FillTarget::SphereCount(3));
+    let path = dir.path().join("no_such_dir").join("fillings.svg");
+    let panel = PicturePanel {
+        label: "cocoon",
+        filling: &f,
+        outline: Some(&pod),
+    };
+    assert!(write_fillings_svg(&path, &[panel]).is_err());
+    assert!(!path.exists());
+}
+
+#[test]
 fn bad_fill_options_are_rejected() {
     let pod = PodShape::seed001_mean(PodKind::Normal);
     let bad = |resolution, target| fill_with_spheres(&pod, &FillOptions { resolution, target });

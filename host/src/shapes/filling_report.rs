@@ -47,6 +47,54 @@ impl FillingReport {
     }
 }
 
+impl std::fmt::Display for FillingReport {
+    /// A Markdown table: the solid, the filling and the relative error of each quantity.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (e, s) = (&self.exact, &self.filling);
+        writeln!(
+            f,
+            "{} spheres, integration grid {:.4} mm",
+            self.sphere_count, self.grid_spacing_mm
+        )?;
+        writeln!(f, "| quantity | solid | filling | relative error |")?;
+        writeln!(f, "|---|---|---|---|")?;
+        writeln!(
+            f,
+            "| volume (mm³) | {:.3} | {:.3} | {:+.4} |",
+            e.volume_mm3, s.volume_mm3, self.volume_rel_error
+        )?;
+        writeln!(
+            f,
+            "| mass (g) | {:.4} | {:.4} | {:+.4} |",
+            e.mass_kg * 1e3,
+            s.mass_kg * 1e3,
+            self.mass_rel_error
+        )?;
+        let c = |m: &MassProperties| {
+            let [x, y, z] = m.centre_of_mass_mm;
+            format!("({x:.3}, {y:.3}, {z:.3})")
+        };
+        writeln!(
+            f,
+            "| centre of mass (mm) | {} | {} | {:.4} of the length |",
+            c(e),
+            c(s),
+            self.centre_of_mass_rel_error
+        )?;
+        for a in 0..3 {
+            writeln!(
+                f,
+                "| principal inertia {} (kg·m²) | {:.4e} | {:.4e} | {:+.4} |",
+                a + 1,
+                e.principal_inertia_kg_m2[a],
+                s.principal_inertia_kg_m2[a],
+                self.inertia_rel_error[a]
+            )?;
+        }
+        Ok(())
+    }
+}
+
 /// Compares `filling` with `solid` on a grid of `resolution` voxels along the solid's
 /// longest edge, at density `density_kg_m3` (kg/m³).
 pub fn filling_report(

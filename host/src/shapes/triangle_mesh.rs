@@ -19,6 +19,9 @@ use super::error::ShapeError;
 use super::solid::Solid;
 use super::voxel_grid::{Aabb, VoxelGrid};
 
+/// Relative widening (of a voxel edge) of a triangle's xy box when finding its columns.
+const COLUMN_SLACK: f64 = 1e-6;
+
 /// A closed triangle mesh, mm.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TriangleMesh {
@@ -180,8 +183,11 @@ impl Solid for TriangleMesh {
         let mut columns: Vec<Vec<f64>> = vec![Vec::new(); nx * ny];
         for t in &self.triangles {
             let [a, b, c] = t.map(|i| self.vertices_mm[i]);
-            let lo = |axis: usize| a[axis].min(b[axis]).min(c[axis]);
-            let hi = |axis: usize| a[axis].max(b[axis]).max(c[axis]);
+            // Widened a hair so rounding in the index range never drops a column that
+            // passes exactly through a vertex or edge: the crossing test decides those.
+            let slack = COLUMN_SLACK * grid.spacing_mm;
+            let lo = |axis: usize| a[axis].min(b[axis]).min(c[axis]) - slack;
+            let hi = |axis: usize| a[axis].max(b[axis]).max(c[axis]) + slack;
             for j in grid.index_range(1, lo(1), hi(1)) {
                 for i in grid.index_range(0, lo(0), hi(0)) {
                     if let Some(z) = self.crossings(t, grid.coord_mm(0, i), grid.coord_mm(1, j)) {
