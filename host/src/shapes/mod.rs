@@ -4,7 +4,7 @@
 //!   single-grain) as implicit solids of length × width × thickness, mm; [`ShapeMix`]: their
 //!   fractions in a sample.
 //! - [`read_stl`]: a scanned pod from a binary or ASCII STL file, as a closed
-//!   [`TriangleMesh`].
+//!   [`TriangleMesh`]; [`pod_triangles`] and [`binary_stl_bytes`] export an analytic pod.
 //! - [`fill_with_spheres`]: a deterministic filling of any [`Solid`] with overlapping
 //!   spheres, at a sphere count or a covered fraction ("smoothness").
 //! - [`filling_report`]: the filling's volume, mass (density 582.36 kg/m³, seed 000 §3.1.1),
@@ -31,6 +31,7 @@ pub mod filling_csv;
 pub mod filling_report;
 pub mod mass_properties;
 pub mod picture;
+pub mod pod_mesh;
 pub mod pod_shape;
 pub mod shape_mix;
 pub mod solid;
@@ -46,6 +47,7 @@ pub use mass_properties::{
     ellipsoid_mass_properties, voxel_mass_properties, MassProperties, POD_DENSITY_KG_M3,
 };
 pub use picture::{fillings_svg, write_fillings_svg, PicturePanel};
+pub use pod_mesh::pod_triangles;
 pub use pod_shape::{PodKind, PodShape};
 pub use shape_mix::ShapeMix;
 pub use solid::Solid;
