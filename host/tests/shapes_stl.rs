@@ -266,6 +266,24 @@ fn bad_stl_files_are_rejected_naming_the_file() {
     );
     assert!(e.contains("triangle 6 vertex 1"), "{e}");
 
+    // A binary file whose header starts with "solid" but whose size is wrong.
+    let mut bytes = binary_stl_bytes(&tris);
+    bytes[..5].copy_from_slice(b"solid");
+    bytes[84 + 13] = 0xFF; // not UTF-8
+    bytes.push(0);
+    let solid_binary = write("solid_binary.stl", &bytes);
+    let e = err_of(&solid_binary);
+    assert!(
+        e.contains("solid_binary.stl")
+            && e.contains("header declares 4084 bytes but the file has 4085"),
+        "{e}"
+    );
+
+    // Written atomically, read back.
+    let out = dir.path().join("written.stl");
+    write_binary_stl(&out, &tris).unwrap();
+    assert_eq!(read_stl(&out).unwrap().triangles.len(), 80);
+
     let empty = write("empty.stl", b"");
     let e = err_of(&empty);
     assert!(

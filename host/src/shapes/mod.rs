@@ -54,6 +54,6 @@ pub use solid::Solid;
 pub use sphere_fill::{
     fill_with_spheres, FillOptions, FillTarget, Sphere, SphereFilling, DEFAULT_FILL_RESOLUTION,
 };
-pub use stl::{ascii_stl_text, binary_stl_bytes, parse_stl, read_stl};
+pub use stl::{ascii_stl_text, binary_stl_bytes, parse_stl, read_stl, write_binary_stl};
 pub use triangle_mesh::TriangleMesh;
 pub use voxel_grid::{Aabb, VoxelGrid};

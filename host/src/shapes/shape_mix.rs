@@ -70,7 +70,7 @@ impl ShapeMix {
     pub fn apportion(&self, n: usize) -> [usize; 3] {
         let quotas = self.fractions.map(|f| f * n as f64);
         let mut counts = quotas.map(|q| q.floor() as usize);
-        let mut left = n - counts.iter().sum::<usize>();
+        let mut left = n.saturating_sub(counts.iter().sum::<usize>());
         let mut order = [0usize, 1, 2];
         order.sort_by(|&i, &j| {
             let (ri, rj) = (quotas[i] - quotas[i].floor(), quotas[j] - quotas[j].floor());

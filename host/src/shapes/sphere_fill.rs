@@ -42,6 +42,9 @@ use super::voxel_grid::{Aabb, VoxelGrid};
 pub const DEFAULT_FILL_RESOLUTION: usize = 64;
 /// Fewest voxels along the longest edge that resolve a pod at all.
 pub const MIN_FILL_RESOLUTION: usize = 4;
+/// Most voxels in a fill grid (about 1 GB of working memory): a guard against a typo in
+/// the resolution, not a limit of the method.
+pub const MAX_FILL_VOXELS: usize = 50_000_000;
 
 /// One sphere of a filling, body frame, mm.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -143,6 +146,13 @@ pub fn fill_with_spheres(
         return Err(invalid("sphere count", 0.0, "must be at least 1"));
     }
     let grid = VoxelGrid::covering(&solid.bounds_mm(), options.resolution, 1);
+    if grid.len() > MAX_FILL_VOXELS {
+        return Err(invalid(
+            "fill resolution (voxels along the longest edge)",
+            options.resolution as f64,
+            "gives a grid of more than 50 million voxels",
+        ));
+    }
     let inside = solid.voxelize(&grid);
     let total = inside.iter().filter(|&&x| x).count();
     if total == 0 {

@@ -44,14 +44,22 @@ pub fn parse_stl(path: &Path, bytes: &[u8]) -> Result<TriangleMesh, ShapeError> 
     let triangles = if declared == Some(bytes.len()) || !looks_ascii {
         parse_binary(path, bytes)?
     } else {
-        let text = std::str::from_utf8(bytes).map_err(|e| ShapeError::MalformedAscii {
-            path: path.to_path_buf(),
-            line: 1 + bytes[..e.valid_up_to()]
-                .iter()
-                .filter(|&&b| b == b'\n')
-                .count(),
-            column: 1,
-            reason: "the text is not valid UTF-8".to_owned(),
+        let text = std::str::from_utf8(bytes).map_err(|e| {
+            let as_binary = declared.map_or(String::new(), |n| {
+                format!(
+                    "; read as binary, its header declares {n} bytes but the file has {}",
+                    bytes.len()
+                )
+            });
+            ShapeError::MalformedAscii {
+                path: path.to_path_buf(),
+                line: 1 + bytes[..e.valid_up_to()]
+                    .iter()
+                    .filter(|&&b| b == b'\n')
+                    .count(),
+                column: 1,
+                reason: format!("starts with 'solid' but is not UTF-8 text{as_binary}"),
+            }
         })?;
         parse_ascii(path, text)?
     };
@@ -226,6 +234,14 @@ pub fn binary_stl_bytes(triangles: &[[[f64; 3]; 3]]) -> Vec<u8> {
         out.extend_from_slice(&0u16.to_le_bytes());
     }
     out
+}
+
+/// Writes `triangles` (mm) as a binary STL file at `path`, atomically.
+pub fn write_binary_stl(path: &Path, triangles: &[[[f64; 3]; 3]]) -> anyhow::Result<()> {
+    crate::io::write_atomic(path, |w| {
+        w.write_all(&binary_stl_bytes(triangles))?;
+        Ok(())
+    })
 }
 
 /// ASCII STL text of `triangles`, named `name`.
