@@ -23,6 +23,20 @@ fn fill(solid: &dyn Solid, target: FillTarget) -> SphereFilling {
     .unwrap()
 }
 
+/// Measured (fill grid 64, report grid 160), relative errors of the filling:
+///
+/// | shape | spheres | volume | COM offset / L | inertia (ascending moments) |
+/// |---|---|---|---|---|
+/// | normal | 1 | −0.626 | 0.188 | −0.686 −0.886 −0.892 |
+/// | normal | 3 | −0.222 | 0.022 | −0.348 −0.262 −0.300 |
+/// | normal | 7 | −0.111 | 0.004 | −0.202 −0.135 −0.164 |
+/// | normal | 15 | −0.033 | 0.001 | −0.047 −0.056 −0.057 |
+/// | cocoon | 1, 3, 7, 15 | −0.626, −0.231, −0.116, −0.041 | 0.125, 0.026, 0.003, 0.004 | max 0.885, 0.366, 0.196, 0.072 |
+/// | single-grain | 1, 3, 7, 15 | −0.582, −0.246, −0.142, −0.052 | 0, 0, 0.010, 0 | max 0.857, 0.392, 0.255, 0.096 |
+///
+/// Volume and inertia errors fall strictly (asserted). The centre-of-mass offset does not
+/// always: an odd sphere count on a symmetric pod leaves one sphere unpaired (cocoon 7 → 15,
+/// single-grain 3 → 7), so it is printed, not asserted.
 #[test]
 fn filling_errors_fall_as_the_sphere_count_rises() {
     for kind in PodKind::ALL {
@@ -50,9 +64,15 @@ fn filling_errors_fall_as_the_sphere_count_rises() {
             assert!(pair[1].volume_rel_error.abs() < pair[0].volume_rel_error.abs());
             assert!(pair[1].max_inertia_rel_error() < pair[0].max_inertia_rel_error());
         }
+        // Stated targets for 15 spheres: volume within 6%, each principal moment within 10%.
+        let last = &reports[COUNTS.len() - 1];
+        assert!(last.volume_rel_error.abs() < 0.06 && last.max_inertia_rel_error() < 0.10);
     }
 }
 
+/// Measured at 95% coverage: normal 13 spheres, solid 3.374 g, filling 3.231 g (+48.2% and
+/// +41.9% against 2.277 g); cocoon 15 spheres, 3.370 g, 3.231 g (+48.0%, +41.9%);
+/// single-grain 17 spheres, 3.012 g, 2.876 g (+32.3%, +26.3%).
 #[test]
 fn seed001_pod_mass_against_the_hundred_pod_mass() {
     let measured_g = HUNDRED_POD_MASS_G / 100.0;
