@@ -7,9 +7,9 @@
 //!   [`TriangleMesh`]; [`pod_triangles`] and [`binary_stl_bytes`] export an analytic pod.
 //! - [`fill_with_spheres`]: a deterministic filling of any [`Solid`] with overlapping
 //!   spheres, at a sphere count or a covered fraction ("smoothness").
-//! - [`filling_report`]: the filling's volume, mass (density 582.36 kg/m³, seed 000 §3.1.1),
+//! - [`filling_report()`]: the filling's volume, mass (density 582.36 kg/m³, seed 000 §3.1.1),
 //!   centre of mass and principal inertia against the solid's.
-//! - [`filling_csv`] and [`write_fillings_svg`]: the filling as CSV rows and a picture.
+//! - [`filling_csv()`] and [`write_fillings_svg`]: the filling as CSV rows and a picture.
 //!
 //! All lengths are mm in the body frame: origin at the pod's geometric centre, x along the
 //! width, y along the thickness, z along the length (seed 001 §2.1).
