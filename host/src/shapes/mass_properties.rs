@@ -40,7 +40,12 @@ pub struct MassProperties {
     pub centre_of_mass_mm: [f64; 3],
     /// Principal moments of inertia about the centre of mass, kg·m², ascending.
     pub principal_inertia_kg_m2: [f64; 3],
+    /// Unit principal axes in the body frame, one per moment (same order), forming a
+    /// right-handed frame; for a symmetric pod, the body axes ordered by moment.
+    pub principal_axes: [[f64; 3]; 3],
 }
+
+const IDENTITY_AXES: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
 /// Mass properties of the voxels flagged `inside` in `grid`, at density `density_kg_m3`.
 pub fn voxel_mass_properties(
@@ -90,6 +95,7 @@ pub fn voxel_mass_properties(
             mass_kg: 0.0,
             centre_of_mass_mm: origin,
             principal_inertia_kg_m2: [0.0; 3],
+            principal_axes: IDENTITY_AXES,
         };
     }
     let mean = first / count;
@@ -108,17 +114,28 @@ fn from_second_moment(
     density_kg_m3: f64,
 ) -> MassProperties {
     let inertia = (Matrix3::identity() * s_mm5.trace() - s_mm5) * (density_kg_m3 * M5_PER_MM5);
-    let mut moments: Vec<f64> = SymmetricEigen::new(inertia)
-        .eigenvalues
-        .iter()
-        .copied()
-        .collect();
-    moments.sort_by(f64::total_cmp);
+    let eigen = SymmetricEigen::new(inertia);
+    let mut order = [0usize, 1, 2];
+    order.sort_by(|&i, &j| eigen.eigenvalues[i].total_cmp(&eigen.eigenvalues[j]));
+    // Axis signs fixed so results are reproducible: the largest component of each of the
+    // first two axes is positive, and the third completes a right-handed frame.
+    let axis = |n: usize| {
+        let v: Vector3<f64> = eigen.eigenvectors.column(order[n]).into_owned();
+        let big = v.iamax();
+        if v[big] < 0.0 {
+            -v
+        } else {
+            v
+        }
+    };
+    let (e1, e2) = (axis(0), axis(1));
+    let e3 = e1.cross(&e2);
     MassProperties {
         volume_mm3,
         mass_kg: density_kg_m3 * volume_mm3 * M3_PER_MM3,
         centre_of_mass_mm,
-        principal_inertia_kg_m2: [moments[0], moments[1], moments[2]],
+        principal_inertia_kg_m2: order.map(|i| eigen.eigenvalues[i]),
+        principal_axes: [e1, e2, e3].map(|e| [e[0], e[1], e[2]]),
     }
 }
 

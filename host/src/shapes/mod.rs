@@ -8,7 +8,8 @@
 //! - [`fill_with_spheres`]: a deterministic filling of any [`Solid`] with overlapping
 //!   spheres, at a sphere count or a covered fraction ("smoothness").
 //! - [`filling_report()`]: the filling's volume, mass (density 582.36 kg/m³, seed 000 §3.1.1),
-//!   centre of mass and principal inertia against the solid's.
+//!   centre of mass and principal inertia against the solid's;
+//!   [`SphereFilling::in_principal_frame`] moves a filling to its principal frame.
 //! - [`filling_csv()`] and [`write_fillings_svg`]: the filling as CSV rows and a picture.
 //!
 //! All lengths are mm in the body frame: origin at the pod's geometric centre, x along the
@@ -42,7 +43,9 @@ pub mod voxel_grid;
 
 pub use error::ShapeError;
 pub use filling_csv::{filling_csv, read_filling_csv, write_filling_csv};
-pub use filling_report::{filling_report, FillingReport, DEFAULT_REPORT_RESOLUTION};
+pub use filling_report::{
+    filling_report, voxelize_spheres, FillingReport, DEFAULT_REPORT_RESOLUTION,
+};
 pub use mass_properties::{
     ellipsoid_mass_properties, voxel_mass_properties, MassProperties, POD_DENSITY_KG_M3,
 };

@@ -35,6 +35,7 @@ use super::ball_cover::{ball_runs, ball_volume, CoveredSet, Run};
 
 use super::distance_transform::squared_distance_to_outside;
 use super::error::ShapeError;
+use super::mass_properties::MassProperties;
 use super::solid::Solid;
 use super::voxel_grid::{Aabb, VoxelGrid};
 
@@ -99,6 +100,32 @@ impl SphereFilling {
                 max_mm: s.centre_mm.map(|c| c + s.radius_mm),
             })
             .reduce(|a, b| a.union(&b))
+    }
+
+    /// The filling in the principal frame of `mass`: centres p' = Rᵀ(p − c), with c the
+    /// centre of mass and R's columns the principal axes (mass from
+    /// [`super::filling_report()`] or [`super::voxel_mass_properties`]). A DEM clump
+    /// wants its spheres in this frame, where the inertia tensor is diagonal.
+    pub fn in_principal_frame(&self, mass: &MassProperties) -> SphereFilling {
+        let c = mass.centre_of_mass_mm;
+        let spheres = self
+            .spheres
+            .iter()
+            .map(|s| {
+                let d = [0, 1, 2].map(|a| s.centre_mm[a] - c[a]);
+                Sphere {
+                    centre_mm: mass
+                        .principal_axes
+                        .map(|e| e[0] * d[0] + e[1] * d[1] + e[2] * d[2]),
+                    radius_mm: s.radius_mm,
+                }
+            })
+            .collect();
+        SphereFilling {
+            spheres,
+            covered_fraction: self.covered_fraction,
+            fill_spacing_mm: self.fill_spacing_mm,
+        }
     }
 
     /// True when `p_mm` lies in at least one sphere.
