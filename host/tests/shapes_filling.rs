@@ -46,7 +46,7 @@ fn filling_errors_fall_as_the_sphere_count_rises() {
             .map(|&n| {
                 let f = fill(&pod, FillTarget::SphereCount(n));
                 assert_eq!(f.spheres.len(), n);
-                filling_report(&pod, &f, REPORT_RESOLUTION, POD_DENSITY_KG_M3)
+                filling_report(&pod, &f, REPORT_RESOLUTION, POD_DENSITY_KG_M3).unwrap()
             })
             .collect();
         for (n, r) in COUNTS.iter().zip(&reports) {
@@ -85,7 +85,7 @@ fn seed001_pod_mass_against_the_hundred_pod_mass() {
                 max_spheres: 400,
             },
         );
-        let r = filling_report(&pod, &f, REPORT_RESOLUTION, POD_DENSITY_KG_M3);
+        let r = filling_report(&pod, &f, REPORT_RESOLUTION, POD_DENSITY_KG_M3).unwrap();
         let analytic_g = POD_DENSITY_KG_M3 * pod.analytic_volume_mm3() * 1e-6;
         let exact_g = r.exact.mass_kg * 1e3;
         let fill_g = r.filling.mass_kg * 1e3;
@@ -153,7 +153,7 @@ fn higher_smoothness_takes_more_spheres_and_errs_less() {
             },
         );
         assert!(f.covered_fraction >= fraction);
-        let r = filling_report(&pod, &f, REPORT_RESOLUTION, POD_DENSITY_KG_M3);
+        let r = filling_report(&pod, &f, REPORT_RESOLUTION, POD_DENSITY_KG_M3).unwrap();
         println!("coverage {fraction}: {} spheres\n{r}", f.spheres.len());
         let json = serde_json::to_value(r).unwrap();
         assert_eq!(json["volume_rel_error"].as_f64(), Some(r.volume_rel_error));
@@ -192,4 +192,10 @@ fn bad_fill_options_are_rejected() {
     assert!(bad(32, coverage(0.0)).is_err());
     assert!(bad(32, coverage(1.5)).is_err());
     assert!(bad(32, coverage(f64::NAN)).is_err());
+    assert!(bad(1001, FillTarget::SphereCount(3)).is_err());
+    let f = bad(32, FillTarget::SphereCount(3)).unwrap();
+    assert!(filling_report(&pod, &f, 3, POD_DENSITY_KG_M3).is_err());
+    assert!(filling_report(&pod, &f, usize::MAX, POD_DENSITY_KG_M3).is_err());
+    let e = filling_report(&pod, &f, 64, -1.0).unwrap_err().to_string();
+    assert!(e.contains("density (kg/m³)"), "{e}");
 }

@@ -84,7 +84,7 @@ fn a_tilted_box_has_the_box_moments_about_its_rotated_axes() {
         },
     )
     .unwrap();
-    let report = filling_report(&tilted, &filling, RESOLUTION, POD_DENSITY_KG_M3);
+    let report = filling_report(&tilted, &filling, RESOLUTION, POD_DENSITY_KG_M3).unwrap();
     let local = filling.in_principal_frame(&report.filling);
     let bounds = local.bounds_mm().unwrap();
     let g = VoxelGrid::covering(&bounds, RESOLUTION, 0);

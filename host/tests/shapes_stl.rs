@@ -89,7 +89,7 @@ fn fill_report(mesh: &TriangleMesh, coverage: f64) -> (SphereFilling, FillingRep
         },
     )
     .unwrap();
-    let report = filling_report(mesh, &filling, REPORT_RESOLUTION, POD_DENSITY_KG_M3);
+    let report = filling_report(mesh, &filling, REPORT_RESOLUTION, POD_DENSITY_KG_M3).unwrap();
     (filling, report)
 }
 
@@ -328,8 +328,10 @@ fn exported_pod_stl_fills_like_the_analytic_pod() {
         };
         let from_mesh = fill_with_spheres(&mesh, &options).unwrap();
         let from_shape = fill_with_spheres(&pod, &options).unwrap();
-        let mesh_report = filling_report(&mesh, &from_mesh, REPORT_RESOLUTION, POD_DENSITY_KG_M3);
-        let shape_report = filling_report(&pod, &from_shape, REPORT_RESOLUTION, POD_DENSITY_KG_M3);
+        let mesh_report =
+            filling_report(&mesh, &from_mesh, REPORT_RESOLUTION, POD_DENSITY_KG_M3).unwrap();
+        let shape_report =
+            filling_report(&pod, &from_shape, REPORT_RESOLUTION, POD_DENSITY_KG_M3).unwrap();
         let grid_rel = mesh_report.exact.volume_mm3 / poly - 1.0;
         println!(
             "{:>12}: analytic V = {analytic:.2}, polyhedron {poly:.2} ({:+.2e}), mesh grid {:.2} \

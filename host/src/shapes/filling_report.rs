@@ -9,9 +9,10 @@
 
 use serde::Serialize;
 
+use super::error::ShapeError;
 use super::mass_properties::{voxel_mass_properties, MassProperties};
 use super::solid::Solid;
-use super::sphere_fill::SphereFilling;
+use super::sphere_fill::{SphereFilling, MAX_RESOLUTION, MIN_FILL_RESOLUTION};
 use super::voxel_grid::VoxelGrid;
 
 /// Default voxels along the solid's longest edge for the report's integration.
@@ -96,13 +97,27 @@ impl std::fmt::Display for FillingReport {
 }
 
 /// Compares `filling` with `solid` on a grid of `resolution` voxels along the solid's
-/// longest edge, at density `density_kg_m3` (kg/m³).
+/// longest edge (4..=1000), at density `density_kg_m3` (kg/m³, finite, > 0).
 pub fn filling_report(
     solid: &dyn Solid,
     filling: &SphereFilling,
     resolution: usize,
     density_kg_m3: f64,
-) -> FillingReport {
+) -> Result<FillingReport, ShapeError> {
+    if !(MIN_FILL_RESOLUTION..=MAX_RESOLUTION).contains(&resolution) {
+        return Err(ShapeError::InvalidParameter {
+            name: "report resolution (voxels along the longest edge)",
+            value: resolution as f64,
+            reason: "must lie in 4..=1000",
+        });
+    }
+    if !(density_kg_m3.is_finite() && density_kg_m3 > 0.0) {
+        return Err(ShapeError::InvalidParameter {
+            name: "density (kg/m³)",
+            value: density_kg_m3,
+            reason: "must be a finite number > 0",
+        });
+    }
     let bounds = solid.bounds_mm();
     let longest = bounds.extent_mm().iter().cloned().fold(0.0_f64, f64::max);
     let all = filling.bounds_mm().map_or(bounds, |b| b.union(&bounds));
@@ -115,7 +130,7 @@ pub fn filling_report(
         .map(|a| (fill.centre_of_mass_mm[a] - exact.centre_of_mass_mm[a]).powi(2))
         .sum::<f64>()
         .sqrt();
-    FillingReport {
+    Ok(FillingReport {
         sphere_count: filling.spheres.len(),
         grid_spacing_mm: grid.spacing_mm,
         exact,
@@ -129,7 +144,7 @@ pub fn filling_report(
                 exact.principal_inertia_kg_m2[a],
             )
         }),
-    }
+    })
 }
 
 /// Inside flags of the union of the filling's spheres on `grid`.

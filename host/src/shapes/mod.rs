@@ -20,7 +20,7 @@
 //! let pod = PodShape::seed001_mean(PodKind::Normal);
 //! let options = FillOptions { resolution: 32, target: FillTarget::SphereCount(7) };
 //! let filling = fill_with_spheres(&pod, &options).unwrap();
-//! let report = filling_report(&pod, &filling, 64, POD_DENSITY_KG_M3);
+//! let report = filling_report(&pod, &filling, 64, POD_DENSITY_KG_M3).unwrap();
 //! assert_eq!(report.sphere_count, 7);
 //! assert!(report.volume_rel_error < 0.0); // inscribed spheres fall short of the pod
 //! ```

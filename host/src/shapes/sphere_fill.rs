@@ -43,6 +43,9 @@ use super::voxel_grid::{Aabb, VoxelGrid};
 pub const DEFAULT_FILL_RESOLUTION: usize = 64;
 /// Fewest voxels along the longest edge that resolve a pod at all.
 pub const MIN_FILL_RESOLUTION: usize = 4;
+/// Most voxels along the longest edge (a guard against typos; 1000 resolves 0.03 mm on a
+/// pod).
+pub const MAX_RESOLUTION: usize = 1000;
 /// Most voxels in a fill grid (about 1 GB of working memory): a guard against a typo in
 /// the resolution, not a limit of the method.
 pub const MAX_FILL_VOXELS: usize = 50_000_000;
@@ -150,11 +153,11 @@ pub fn fill_with_spheres(
     solid: &dyn Solid,
     options: &FillOptions,
 ) -> Result<SphereFilling, ShapeError> {
-    if options.resolution < MIN_FILL_RESOLUTION {
+    if !(MIN_FILL_RESOLUTION..=MAX_RESOLUTION).contains(&options.resolution) {
         return Err(invalid(
             "fill resolution (voxels along the longest edge)",
             options.resolution as f64,
-            "must be at least 4",
+            "must lie in 4..=1000",
         ));
     }
     let (max_spheres, fraction) = match options.target {

@@ -116,8 +116,8 @@ impl TriangleMesh {
         }
     }
 
-    /// Heights z, mm, where the vertical line through (x, y) crosses the surface.
-    fn crossings(&self, tri: &[usize; 3], x: f64, y: f64) -> Option<f64> {
+    /// Height z, mm, where the vertical line through (x, y) crosses triangle `tri`, if it does.
+    fn crossing(&self, tri: &[usize; 3], x: f64, y: f64) -> Option<f64> {
         let [p0, p1, p2] = tri.map(|i| self.vertices_mm[i]);
         let w0 = edge_function(p1, p2, x, y);
         let w1 = edge_function(p2, p0, x, y);
@@ -170,7 +170,7 @@ impl Solid for TriangleMesh {
         let above = self
             .triangles
             .iter()
-            .filter_map(|t| self.crossings(t, p[0], p[1]))
+            .filter_map(|t| self.crossing(t, p[0], p[1]))
             .filter(|&z| z > p[2])
             .count();
         above % 2 == 1
@@ -190,7 +190,7 @@ impl Solid for TriangleMesh {
             let hi = |axis: usize| a[axis].max(b[axis]).max(c[axis]) + slack;
             for j in grid.index_range(1, lo(1), hi(1)) {
                 for i in grid.index_range(0, lo(0), hi(0)) {
-                    if let Some(z) = self.crossings(t, grid.coord_mm(0, i), grid.coord_mm(1, j)) {
+                    if let Some(z) = self.crossing(t, grid.coord_mm(0, i), grid.coord_mm(1, j)) {
                         columns[i + nx * j].push(z);
                     }
                 }
