@@ -21,6 +21,7 @@
 //! let (a, b, c) = (18.29 / 2.0, 15.76 / 2.0, 34.27 / 2.0);
 //! let exact = 4.0 / 3.0 * std::f64::consts::PI * a * b * c;
 //! assert!((pod.analytic_volume_mm3() - exact).abs() < 1e-9 * exact);
+//! assert_eq!(PodKind::from_key("single_grain"), Some(PodKind::SingleGrain));
 //! ```
 
 use std::f64::consts::PI;
@@ -66,6 +67,21 @@ impl PodKind {
             PodKind::Cocoon => COCOON_WAIST_RATIO,
             PodKind::SingleGrain => SINGLE_GRAIN_WAIST_RATIO,
         }
+    }
+
+    /// The key of this kind in study files (`[pods.shape_mix]`, `[pods.stl]`):
+    /// `normal`, `cocoon`, `single_grain`.
+    pub fn key(self) -> &'static str {
+        match self {
+            PodKind::Normal => "normal",
+            PodKind::Cocoon => "cocoon",
+            PodKind::SingleGrain => "single_grain",
+        }
+    }
+
+    /// The kind whose study-file key is `key`.
+    pub fn from_key(key: &str) -> Option<PodKind> {
+        PodKind::ALL.into_iter().find(|k| k.key() == key)
     }
 
     /// A lower-case name for files and labels.
