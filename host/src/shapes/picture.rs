@@ -1,6 +1,7 @@
 //! An SVG picture of sphere fillings: for each shape a side view (z across, y up: length ×
-//! thickness) and a top view (z across, x up: length × width), circles drawn at their true
-//! size, with the exact outline of an analytic pod where given. Written atomically.
+//! thickness) and a top view (z across, x up: length × width), circles drawn to scale
+//! (8 px/mm, less for solids wider than 75 mm), with the exact outline of an analytic pod
+//! where given. Written atomically.
 
 use std::path::Path;
 
@@ -12,8 +13,10 @@ use crate::io::write_string_atomic;
 use super::pod_shape::PodShape;
 use super::sphere_fill::SphereFilling;
 
-/// Picture scale, pixels per mm.
+/// Picture scale for pod-sized solids, pixels per mm.
 const PX_PER_MM: f64 = 8.0;
+/// Widest panel, px: larger solids are drawn at a smaller scale.
+const MAX_PANEL_PX: f64 = 600.0;
 /// Space around and between panels, px.
 const GAP_PX: i32 = 30;
 /// Height of the label line above each panel, px.
@@ -51,7 +54,9 @@ pub fn fillings_svg(panels: &[PicturePanel]) -> anyhow::Result<String> {
             half = [0, 1, 2].map(|a| half[a].max(0.5 * e[a]));
         }
     }
-    let px = |mm: f64| (mm * PX_PER_MM).round() as i32;
+    let largest = half.iter().cloned().fold(0.0, f64::max);
+    let scale = PX_PER_MM.min(MAX_PANEL_PX / (2.0 * largest));
+    let px = |mm: f64| (mm * scale).round() as i32;
     let panel_w = px(2.0 * half[2]);
     let panel_h = px(2.0 * half[0].max(half[1]));
     let width = 2 * panel_w + 3 * GAP_PX;
