@@ -10,6 +10,7 @@ pub mod io;
 pub mod lab;
 pub mod optimize;
 pub mod repose;
+pub mod shapes;
 pub mod stats;
 pub mod study;
 pub mod vtk;
