@@ -1,5 +1,5 @@
 //! Hand-run micro-benchmark of Fx division and square root (compare default vs
-//! `--features pure-integer`): `cargo run --release -p arachis-core --example fx_ops`.
+//! `--features float-estimate`): `cargo run --release -p arachis-core --example fx_ops`.
 use arachis_core::num::{Fx, Scalar};
 use std::hint::black_box;
 use std::time::Instant;

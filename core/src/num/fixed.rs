@@ -179,9 +179,10 @@ impl SubAssign for Fx {
 /// Integer square root of a `u128`, rounded to nearest: the unique r with
 /// (r − ½)² ≤ v < (r + ½)².
 ///
-/// By default an `f64` estimate is corrected to the exact integer root with integer
-/// multiply-and-compare (the result does not depend on the estimate); with the `pure-integer`
-/// feature the integer-only `isqrt` of `core` is used. Tests check both agree.
+/// By default the integer-only `isqrt` of `core` is used (stepping is integer-only, DESIGN §5).
+/// With the `float-estimate` feature an `f64` estimate is corrected to the exact integer root
+/// with integer multiply-and-compare, so the result does not depend on the estimate. Tests
+/// check both agree.
 #[inline]
 pub fn isqrt_round_u128(v: u128) -> u128 {
     let r = isqrt_floor_u128(v);
@@ -196,7 +197,7 @@ pub fn isqrt_round_u128(v: u128) -> u128 {
 /// ⌊√v⌋ for `v < 2^126`, exact.
 #[inline(always)]
 pub fn isqrt_floor_u128(v: u128) -> u128 {
-    #[cfg(feature = "pure-integer")]
+    #[cfg(not(feature = "float-estimate"))]
     {
         if v <= u64::MAX as u128 {
             (v as u64).isqrt() as u128
@@ -204,7 +205,7 @@ pub fn isqrt_floor_u128(v: u128) -> u128 {
             v.isqrt()
         }
     }
-    #[cfg(not(feature = "pure-integer"))]
+    #[cfg(feature = "float-estimate")]
     {
         // v = raw·2^32 in Fx use; estimate √v = √(v/2^32)·2^16 with hardware conversions.
         let mut r = if v >> 64 == 0 {
