@@ -69,10 +69,12 @@ impl Fx {
     }
     #[inline(always)]
     fn check(r: i128) -> Fx {
-        if r > i64::MAX as i128 || r <= i64::MIN as i128 {
+        // r fits an i64 iff bits 63..127 are all equal; POISON itself is also refused.
+        let lo = r as i64;
+        if (lo as i128 != r) | (lo == POISON) {
             Fx::POISON
         } else {
-            Fx(r as i64)
+            Fx(lo)
         }
     }
 }
@@ -300,6 +302,37 @@ impl Scalar for Fx {
         Fx::check(self.0 as i128 * k as i128)
     }
     #[inline(always)]
+    fn dot3(a: Self, b: Self, c: Self, d: Self, e: Self, f: Self) -> Self {
+        let poisoned = (a.0 == POISON)
+            | (b.0 == POISON)
+            | (c.0 == POISON)
+            | (d.0 == POISON)
+            | (e.0 == POISON)
+            | (f.0 == POISON);
+        let p1 = a.0 as i128 * b.0 as i128;
+        let p2 = c.0 as i128 * d.0 as i128;
+        let p3 = e.0 as i128 * f.0 as i128;
+        // |p| ≤ 2^126: the sum of three can exceed i128 only for operands near the range limits.
+        let (s, o1) = p1.overflowing_add(p2);
+        let (s, o2) = s.overflowing_add(p3);
+        if poisoned | o1 | o2 {
+            return Fx::POISON;
+        }
+        Fx::check((s + (1i128 << (FRAC_BITS - 1))) >> FRAC_BITS)
+    }
+    #[inline(always)]
+    fn mul_sub(a: Self, b: Self, c: Self, d: Self) -> Self {
+        let poisoned = (a.0 == POISON) | (b.0 == POISON) | (c.0 == POISON) | (d.0 == POISON);
+        let p1 = a.0 as i128 * b.0 as i128;
+        let p2 = c.0 as i128 * d.0 as i128;
+        // |p1 − p2| ≤ 2^127 overflows only at exactly −2^63·−2^63 − …, excluded by POISON.
+        let (s, o) = p1.overflowing_sub(p2);
+        if poisoned | o {
+            return Fx::POISON;
+        }
+        Fx::check((s + (1i128 << (FRAC_BITS - 1))) >> FRAC_BITS)
+    }
+    #[inline(always)]
     fn floor_i64(self) -> i64 {
         self.0 >> FRAC_BITS
     }
@@ -340,6 +373,26 @@ mod tests {
         assert!(!(-p).is_valid());
         assert!(!Fx::from_f64(f64::NAN).is_valid());
         assert!(!Fx::from_f64(3e9).is_valid());
+    }
+
+    #[test]
+    fn fused_products_round_once() {
+        let v = [1.25, -3.5, 0.000_123, 7.0, -0.5, 2.0];
+        let f = v.map(Fx::from_f64);
+        let exact = v[0] * v[1] + v[2] * v[3] + v[4] * v[5];
+        let got = Fx::dot3(f[0], f[1], f[2], f[3], f[4], f[5]).to_f64();
+        let q = f.map(|x| x.to_f64());
+        let exact_q = q[0] * q[1] + q[2] * q[3] + q[4] * q[5];
+        assert!(
+            (got - exact_q).abs() <= 0.5 * 2f64.powi(-32) + 1e-15,
+            "{got} {exact} {exact_q}"
+        );
+        let ms = Fx::mul_sub(f[0], f[1], f[2], f[3]).to_f64();
+        assert!((ms - (q[0] * q[1] - q[2] * q[3])).abs() <= 0.5 * 2f64.powi(-32) + 1e-15);
+        let big = Fx::from_int(i32::MAX);
+        assert!(!Fx::dot3(big, big, big, big, big, big).is_valid());
+        assert!(!Fx::mul_sub(big, big, -big, big).is_valid());
+        assert!(!Fx::dot3(Fx::POISON, Fx::ZERO, Fx::ONE, Fx::ONE, Fx::ONE, Fx::ONE).is_valid());
     }
 
     #[test]

@@ -51,6 +51,17 @@ pub trait Scalar:
     /// Floor to an integer, saturating at the `i64` range (grid binning).
     fn floor_i64(self) -> i64;
 
+    /// a·b + c·d + e·f with a single rounding in fixed point (exact products summed in 128 bits).
+    #[inline(always)]
+    fn dot3(a: Self, b: Self, c: Self, d: Self, e: Self, f: Self) -> Self {
+        a * b + c * d + e * f
+    }
+    /// a·b − c·d with a single rounding in fixed point.
+    #[inline(always)]
+    fn mul_sub(a: Self, b: Self, c: Self, d: Self) -> Self {
+        a * b - c * d
+    }
+
     /// Absolute value.
     #[inline]
     fn abs(self) -> Self {

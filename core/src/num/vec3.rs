@@ -37,15 +37,15 @@ impl<S: Scalar> Vec3<S> {
     /// Dot product.
     #[inline(always)]
     pub fn dot(self, o: Self) -> S {
-        self.x * o.x + self.y * o.y + self.z * o.z
+        S::dot3(self.x, o.x, self.y, o.y, self.z, o.z)
     }
     /// Cross product.
     #[inline(always)]
     pub fn cross(self, o: Self) -> Self {
         Vec3::new(
-            self.y * o.z - self.z * o.y,
-            self.z * o.x - self.x * o.z,
-            self.x * o.y - self.y * o.x,
+            S::mul_sub(self.y, o.z, self.z, o.y),
+            S::mul_sub(self.z, o.x, self.x, o.z),
+            S::mul_sub(self.x, o.y, self.y, o.x),
         )
     }
     /// Scale by a scalar.

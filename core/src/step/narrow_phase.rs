@@ -66,11 +66,17 @@ impl<S: Scalar> Ctx<'_, S> {
         r_star_alpha: S,
         m_star: S,
     ) -> Result<Vec3<S>, Fail> {
-        let bod_i = self.bodies[bi];
+        let bod_i = &self.bodies[bi];
+        let (pos_i, vel_i, w_i, clump_i) = (
+            bod_i.position,
+            bod_i.velocity,
+            bod_i.angular_velocity,
+            bod_i.is_clump,
+        );
         let arm_len_i = r_i - overlap * S::HALF;
         let c = p_i + n.scale(arm_len_i);
-        let arm_i = c - bod_i.position;
-        let mut v_rel = j.wall_velocity - (bod_i.velocity + bod_i.angular_velocity.cross(arm_i));
+        let arm_i = c - pos_i;
+        let mut v_rel = j.wall_velocity - (vel_i + w_i.cross(arm_i));
         let mut arm_j = Vec3::ZERO;
         let mut lever_j = S::ZERO;
         if let Some(bj) = j.body {
@@ -93,7 +99,7 @@ impl<S: Scalar> Ctx<'_, S> {
         } else {
             S::ZERO
         };
-        let lever_i = if pair.rolling.on && bod_i.is_clump {
+        let lever_i = if pair.rolling.on && clump_i {
             arm_i.norm()
         } else {
             arm_len_i
@@ -382,9 +388,20 @@ fn sphere_pair<S: Scalar>(
     };
     let bi = si.body as usize;
     let bj = sj.body as usize;
-    let r_star_alpha = si.radius * sj.radius * overlap / rs;
+    // R* = RiRj/(Ri+Rj) and m* = mimj/(mi+mj); equal radii/masses (monodisperse beds) take
+    // the exact halving shortcut and skip a division each.
+    let r_star_alpha = if si.radius == sj.radius {
+        si.radius * S::HALF * overlap
+    } else {
+        si.radius * sj.radius * overlap / rs
+    };
     let m_star = if pair.needs_damping() {
-        S::ONE / (ctx.bodies[bi].inv_mass + ctx.bodies[bj].inv_mass)
+        let (bi_, bj_) = (&ctx.bodies[bi], &ctx.bodies[bj]);
+        if bi_.mass == bj_.mass {
+            bi_.mass * S::HALF
+        } else {
+            S::ONE / (bi_.inv_mass + bj_.inv_mass)
+        }
     } else {
         S::ZERO
     };
