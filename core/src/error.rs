@@ -15,6 +15,8 @@ pub enum CapacityKind {
     Materials,
     /// The wall list (at most [`crate::wall::MAX_WALLS`]).
     Walls,
+    /// Spheres in one clump (at most [`crate::world::MAX_CLUMP_SPHERES`]).
+    ClumpSpheres,
     /// The per-sphere contact-history slots.
     ContactSlots,
     /// The sphere index scratch array (must be ≥ 4 × sphere capacity).

@@ -46,6 +46,9 @@ use core::f64::consts::PI;
 /// with headroom for the sums the stepper forms.
 pub const MAX_INTERNAL_MAGNITUDE: f64 = 1.0e9;
 
+/// Largest number of spheres in one clump (set-up works in fixed-size stack buffers).
+pub const MAX_CLUMP_SPHERES: usize = 64;
+
 /// Quantise a set-up value (internal units) into `S`, refusing non-finite values, values
 /// beyond [`MAX_INTERNAL_MAGNITUDE`], and non-zero values that would round to zero.
 pub fn quantise<S: Scalar>(x: f64, what: &'static str) -> Result<S, SetupError> {
@@ -324,7 +327,7 @@ impl<'a, S: Scalar> World<'a, S> {
         if spec.spheres.is_empty() {
             return Err(SetupError::EmptyClump);
         }
-        let mut ms: heapless::Vec<MassSphere, 64> = heapless::Vec::new();
+        let mut ms: heapless::Vec<MassSphere, MAX_CLUMP_SPHERES> = heapless::Vec::new();
         for s in spec.spheres {
             let mat = self.material(s.material)?;
             ms.push(MassSphere {
@@ -333,8 +336,8 @@ impl<'a, S: Scalar> World<'a, S> {
                 density_kg_m3: mat.density_g_mm3 / DENSITY_KG_M3_TO_G_MM3,
             })
             .map_err(|_| SetupError::Capacity {
-                kind: CapacityKind::Spheres,
-                capacity: 64,
+                kind: CapacityKind::ClumpSpheres,
+                capacity: MAX_CLUMP_SPHERES as u32,
             })?;
         }
         let props = clump_mass_properties(&ms, DEFAULT_MASS_GRID)?;
@@ -351,6 +354,12 @@ impl<'a, S: Scalar> World<'a, S> {
     ) -> Result<BodyId, SetupError> {
         if spec.spheres.is_empty() {
             return Err(SetupError::EmptyClump);
+        }
+        if spec.spheres.len() > MAX_CLUMP_SPHERES {
+            return Err(SetupError::Capacity {
+                kind: CapacityKind::ClumpSpheres,
+                capacity: MAX_CLUMP_SPHERES as u32,
+            });
         }
         self.check_capacity(spec.spheres.len())?;
         let m = finite(props.mass_kg, "clump mass")?;
@@ -379,7 +388,7 @@ impl<'a, S: Scalar> World<'a, S> {
         }
         let q = [qn[0] / nq, qn[1] / nq, qn[2] / nq, qn[3] / nq];
         let rot = quat_matrix_f64(q);
-        let mut mats = heapless::Vec::<Material, 64>::new();
+        let mut mats = heapless::Vec::<Material, MAX_CLUMP_SPHERES>::new();
         for s in spec.spheres {
             Self::check_radius(s.radius_m)?;
             for x in s.center_m {
@@ -395,7 +404,7 @@ impl<'a, S: Scalar> World<'a, S> {
         let id = self.n_bodies;
         let first = self.n_spheres;
         // Build the spheres first in a local buffer so a failure leaves the world unchanged.
-        let mut new_spheres: heapless::Vec<Sphere<S>, 64> = heapless::Vec::new();
+        let mut new_spheres: heapless::Vec<Sphere<S>, MAX_CLUMP_SPHERES> = heapless::Vec::new();
         for s in spec.spheres {
             let d = [
                 s.center_m[0] - props.center_of_mass_m[0],
@@ -417,8 +426,8 @@ impl<'a, S: Scalar> World<'a, S> {
                     material: s.material.0,
                 })
                 .map_err(|_| SetupError::Capacity {
-                    kind: CapacityKind::Spheres,
-                    capacity: 64,
+                    kind: CapacityKind::ClumpSpheres,
+                    capacity: MAX_CLUMP_SPHERES as u32,
                 })?;
         }
         let body = Body {

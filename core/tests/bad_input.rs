@@ -364,7 +364,11 @@ fn any_f64() -> impl Strategy<Value = f64> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+    // 96 cases by default (fast in debug CI); PROPTEST_CASES raises it for longer runs.
+    #![proptest_config(ProptestConfig {
+        cases: std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(96),
+        ..ProptestConfig::default()
+    })]
     #[test]
     fn random_setup_and_steps_never_panic(
         e_pa in prop_oneof![Just(8.43e6), any_f64().prop_map(|x| x * 1e9)],

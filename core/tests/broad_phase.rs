@@ -57,3 +57,57 @@ fn grid_matches_brute_force() {
         assert_eq!(grid, brute, "cells {cells}");
     }
 }
+
+/// Fuzz finding F2 (fuzz/examples/broad_phase_spread.rs): tiny spheres very far apart made the
+/// cell-merge search take minutes; it is now a doubling + bisection, O(log k).
+#[test]
+fn far_apart_tiny_spheres_step_quickly() {
+    for sep in [9e5, 3e5, 1.0] {
+        let mut o = Owned::<Fx>::new(2, 2);
+        let mut w = World::new(o.storage()).unwrap();
+        let m = w
+            .add_material(MaterialSpec {
+                youngs_modulus_pa: 8.43e6,
+                poisson: 0.386,
+                density_kg_m3: 1e7,
+            })
+            .unwrap();
+        w.set_pair(m, m, PairSpec::hertz_mindlin(0.335, 0.854, 0.346))
+            .unwrap();
+        w.add_sphere(SphereSpec::at_rest(m, 1e-5, [0.0; 3]))
+            .unwrap();
+        w.add_sphere(SphereSpec::at_rest(m, 1e-5, [sep; 3]))
+            .unwrap();
+        w.set_timestep_s(w.max_timestep_s() / 2.0).unwrap();
+        let t = std::time::Instant::now();
+        w.run(3).unwrap();
+        assert!(
+            t.elapsed().as_secs_f64() < 5.0,
+            "separation {sep}: {:?}",
+            t.elapsed()
+        );
+    }
+}
+
+/// Fuzz finding F1: centres 1e-6 mm apart along x (|d|² underflows Q32.32) must be pushed
+/// apart along x, not along the coincident-centre fallback +z.
+#[test]
+fn near_coincident_centres_use_the_true_normal() {
+    fn run<S: Scalar>() -> [f64; 3] {
+        let mut o = Owned::<S>::new(2, 2);
+        let mut w = World::new(o.storage()).unwrap();
+        let pod = w.add_material(POD).unwrap();
+        w.set_pair(pod, pod, normal_only(0.5)).unwrap();
+        w.add_sphere(SphereSpec::at_rest(pod, 0.004, [0.0; 3]))
+            .unwrap();
+        w.add_sphere(SphereSpec::at_rest(pod, 0.004, [1e-9, 0.0, 0.0]))
+            .unwrap();
+        w.set_timestep_s(1e-7).unwrap();
+        w.step().unwrap();
+        w.body(BodyId(1)).velocity.to_f64()
+    }
+    for (name, v) in [("fixed", run::<Fx>()), ("f64", run::<f64>())] {
+        println!("{name}: v1 = {v:?}");
+        assert!(v[0] > 0.0 && v[2].abs() < 1e-6 * v[0], "{name}: {v:?}");
+    }
+}

@@ -6,6 +6,9 @@
 //! The term only accumulates the magnitude μr·Fn·R_i per body; the integrator applies it along
 //! −ω̂_i and caps it so that it never reverses ω within a step (a constant torque would
 //! otherwise chatter around ω = 0, DESIGN §2).
+//!
+//! Because each body's torque follows its own ω̂, the pair of torques is not equal and
+//! opposite: this law dissipates angular momentum as well as energy (as in EDEM).
 
 use super::{ContactForce, ContactKinematics, ContactState, ContactTerm};
 use crate::num::Scalar;

@@ -154,45 +154,13 @@ impl Div for Fx {
     }
 }
 
-/// Exact truncated quotient and remainder of `un / ud` (requires `un < ud · 2^63`).
-///
-/// The result is the unique integer pair with `un = t·ud + rem`, `0 ≤ rem < ud`: it does not
-/// depend on how it is found. By default a hardware `f64` estimate (two rounds) is corrected
-/// with exact integer multiply-and-compare, which is several times faster than 128-bit
-/// software division; with the `pure-integer` feature the plain integer division is used.
-/// Tests check both give identical bits.
+/// Exact truncated quotient and remainder of `un / ud` (requires `un < ud · 2^63`), by
+/// integer division. (An `f64`-estimate variant was measured slower: 42 ns against 18–20 ns
+/// for the 128-bit integer division on this machine, so division is integer-only.)
 #[inline(always)]
 pub fn udivrem(un: u128, ud: u128) -> (u128, u128) {
-    #[cfg(feature = "pure-integer")]
-    {
-        (un / ud, un % ud)
-    }
-    #[cfg(not(feature = "pure-integer"))]
-    {
-        // Estimate with hardware conversions only (u64/i64 ↔ f64): un = |a|·2^32, ud < 2^63.
-        let df = ud as u64 as f64;
-        let af = (un >> FRAC_BITS) as u64 as f64;
-        let mut t = (af / df * 4_294_967_296.0) as u64 as u128;
-        let mut r = un as i128 - (t * ud) as i128;
-        // Second estimate from the remainder (hardware conversion when it fits an i64, the
-        // usual case; software i128 conversion otherwise).
-        let c = if r > i64::MIN as i128 && r < i64::MAX as i128 {
-            (r as i64 as f64 / df) as i64 as i128
-        } else {
-            (r as f64 / df) as i128
-        };
-        t = (t as i128 + c) as u128;
-        r -= c * ud as i128;
-        while r < 0 {
-            t -= 1;
-            r += ud as i128;
-        }
-        while r >= ud as i128 {
-            t += 1;
-            r -= ud as i128;
-        }
-        (t, r as u128)
-    }
+    let t = un / ud;
+    (t, un - t * ud)
 }
 
 impl AddAssign for Fx {

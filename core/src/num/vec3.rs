@@ -68,6 +68,22 @@ impl<S: Scalar> Vec3<S> {
     pub fn is_valid(self) -> bool {
         self.x.is_valid() & self.y.is_valid() & self.z.is_valid()
     }
+    /// Unit vector along `self` and the length, or `None` for the zero vector.
+    ///
+    /// The vector is first divided by its largest component, so that vectors whose squared
+    /// length would round to zero in Q32.32 (components below ~1.5e-5) still get an accurate
+    /// direction and length.
+    #[inline]
+    pub fn normalize_with_len(self) -> Option<(Self, S)> {
+        let m = self.x.abs().max(self.y.abs()).max(self.z.abs());
+        if m == S::ZERO {
+            return None;
+        }
+        let u = self.scale(S::ONE / m);
+        let nu = u.norm();
+        Some((u.scale(S::ONE / nu), m * nu))
+    }
+
     /// Component-wise product.
     #[inline(always)]
     pub fn mul_elem(self, o: Self) -> Self {

@@ -61,13 +61,28 @@ impl<S: Scalar> World<'_, S> {
         let dim = |e: S| -> i64 { (e / edge).floor_i64().clamp(0, 1 << 40) + 1 };
         let d0 = [dim(ext.x), dim(ext.y), dim(ext.z)];
         let budget = (self.cells.len() - 1) as i64;
-        let mut k: i64 = 1;
         let total = |k: i64| -> i64 {
             let c = |d: i64| (d + k - 1) / k;
             c(d0[0]).saturating_mul(c(d0[1])).saturating_mul(c(d0[2]))
         };
-        while total(k) > budget {
-            k = if total(k * 2) > budget { k * 2 } else { k + 1 };
+        // Smallest merge factor k with total(k) ≤ budget: double until it fits, then bisect
+        // (total is non-increasing in k). O(log k) evaluations for any spread.
+        let mut k: i64 = 1;
+        if total(1) > budget {
+            let mut hi: i64 = 2;
+            while total(hi) > budget {
+                hi *= 2;
+            }
+            let mut lo = hi / 2; // total(lo) > budget
+            while hi - lo > 1 {
+                let mid = lo + (hi - lo) / 2;
+                if total(mid) > budget {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            k = hi;
         }
         let dims = [
             ((d0[0] + k - 1) / k) as u32,

@@ -83,17 +83,11 @@ impl<S: Scalar> World<'_, S> {
     }
 }
 
-/// Unit vector along `v`, or `None` for the zero vector. `v` is first divided by its largest
-/// component so that tiny vectors (whose squared norm would round to zero in Q32.32) still
-/// get an accurate direction: rolling friction must act down to the last raw unit of ω.
+/// Unit vector along `v`, or `None` for the zero vector (accurate even for tiny ω, so rolling
+/// friction acts down to the last raw unit: see [`Vec3::normalize_with_len`]).
 #[inline]
 fn unit<S: Scalar>(v: Vec3<S>) -> Option<Vec3<S>> {
-    let m = v.x.abs().max(v.y.abs()).max(v.z.abs());
-    if m == S::ZERO {
-        return None;
-    }
-    let u = v.scale(S::ONE / m);
-    Some(u.scale(S::ONE / u.norm()))
+    v.normalize_with_len().map(|(u, _)| u)
 }
 
 fn overflow(id: usize) -> StepError {

@@ -2,7 +2,8 @@
 //! pairs, evaluation of the pair's contact terms, and accumulation of forces and torques.
 //!
 //! Geometry (seed 000 eqs. (1)–(2), DESIGN §2): α = Ri + Rj − |rj − ri|, n̂ = (rj − ri)/|rj − ri|
-//! (n̂ = +z for coincident centres, a deterministic choice), R* = RiRj/(Ri+Rj), m* =
+//! (n̂ = +z for exactly coincident centres, a deterministic choice; near-coincident centres whose
+//! |d|² underflows are normalised after scaling by the largest component), R* = RiRj/(Ri+Rj), m* =
 //! mimj/(mi+mj) (wall: R* = Ri, m* = mi), a = √(R*α). The contact point is
 //! c = ri + n̂(Ri − α/2); lever arms run from each body's centre of mass to c.
 //!
@@ -234,8 +235,21 @@ impl<S: Scalar> World<'_, S> {
             let cz = c / (dx * dy);
             // Same cell: partners after i in the sorted order.
             let end = cells[c as usize + 1] as usize;
+            let si = &spheres[i];
+            let (pi, ri, body_i) = (si.position, si.radius, si.body);
+            // Cheap per-axis rejection with sphere i's data hoisted; the full test and the
+            // contact evaluation run only for the few candidates that pass.
+            let near = |sj: &Sphere<S>| -> bool {
+                let rs = ri + sj.radius;
+                sj.body != body_i
+                    && (sj.position.x - pi.x).abs() < rs
+                    && (sj.position.y - pi.y).abs() < rs
+                    && (sj.position.z - pi.z).abs() < rs
+            };
             for &j in &sorted[idx + 1..end] {
-                sphere_pair(&mut ctx, spheres, pairs, i, j as usize)?;
+                if near(&spheres[j as usize]) {
+                    sphere_pair(&mut ctx, spheres, pairs, i, j as usize)?;
+                }
             }
             for off in HALF_NEIGHBOURS.iter() {
                 let nx = cx as i64 + off[0] as i64;
@@ -253,7 +267,9 @@ impl<S: Scalar> World<'_, S> {
                 let nc = ((nz as u32 * dy + ny as u32) * dx + nx as u32) as usize;
                 let (s, e) = (cells[nc] as usize, cells[nc + 1] as usize);
                 for &j in &sorted[s..e] {
-                    sphere_pair(&mut ctx, spheres, pairs, i, j as usize)?;
+                    if near(&spheres[j as usize]) {
+                        sphere_pair(&mut ctx, spheres, pairs, i, j as usize)?;
+                    }
                 }
             }
         }
@@ -339,7 +355,7 @@ impl<S: Scalar> World<'_, S> {
 }
 
 /// Test one candidate sphere pair and evaluate it if in contact.
-#[inline(always)]
+#[inline(never)]
 fn sphere_pair<S: Scalar>(
     ctx: &mut Ctx<'_, S>,
     spheres: &[Sphere<S>],
@@ -379,13 +395,17 @@ fn sphere_pair<S: Scalar>(
             material_b: sj.material,
         });
     }
-    let dist = d2.sqrt();
-    let overlap = rs - dist;
+    let mut dist = d2.sqrt();
     let n = if dist > S::ZERO {
         d.scale(S::ONE / dist)
+    } else if let Some((u, len)) = d.normalize_with_len() {
+        // |d|² underflowed (centres within ~1.5e-5 mm) but d itself is resolvable.
+        dist = len;
+        u
     } else {
         Vec3::new(S::ZERO, S::ZERO, S::ONE)
     };
+    let overlap = rs - dist;
     let bi = si.body as usize;
     let bj = sj.body as usize;
     // R* = RiRj/(Ri+Rj) and m* = mimj/(mi+mj); equal radii/masses (monodisperse beds) take
