@@ -11,8 +11,9 @@
 //! - for scale, f64 packings from different seeds spread by 0.68 % (bed) and 0.71 % (COM, SD),
 //!   and an f64 run whose sphere 0 was launched 1e-9 m/s faster differs from the unperturbed
 //!   one by 0.03–0.30 % (bed) and ≤ 0.04 % (COM) over three seeds. So quantisation changes an
-//!   individual packing more than a tiny perturbation does (likely through the near-static
-//!   regime: rolling resistance and sliding at ω, v → 0), not merely by amplified chaos;
+//!   individual packing more than a tiny perturbation does, not merely by amplified chaos
+//!   (untested hypothesis: through the near-static regime, rolling resistance and sliding at
+//!   ω, v → 0);
 //! - averaged over the [`SEEDS`] beds, fixed and f64 agree: 0.28 % (bed) and 0.09 % (COM),
 //!   with a standard error of the mean difference of 0.39 % and 0.41 %: no bias is detected.
 //!
