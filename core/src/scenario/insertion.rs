@@ -11,7 +11,8 @@
 //!
 //! Cost: each candidate is checked against every sphere already in the world, O(N) per
 //! candidate and O(N²) per fill. No scratch memory is needed, which keeps the set-up
-//! allocation-free; for the bench bed (N = 2 000) a fill takes milliseconds in release.
+//! allocation-free. Measured in release (loaded machine): the bench bed fill takes 0.1 s for
+//! N = 2 000 and 1.9 s for the largest accepted N = 3 359.
 
 use super::{ScenarioError, SplitMix64};
 use crate::body::SphereSpec;
