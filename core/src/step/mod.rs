@@ -44,8 +44,7 @@ impl<S: Scalar> World<'_, S> {
         }
         self.apply_body_forces()?;
         self.ensure_neighbour_list()?;
-        self.sphere_contacts()?;
-        self.wall_contacts()?;
+        self.contacts()?;
         self.integrate()?;
         self.move_walls()?;
         self.time += self.dt;

@@ -20,6 +20,7 @@ use crate::error::{Other, Stage, StepError};
 use crate::material::MAX_MATERIALS;
 use crate::num::{Scalar, Vec3};
 use crate::pair::PairParams;
+use crate::wall::Wall;
 use crate::world::World;
 
 /// The j side of a contact.
@@ -174,10 +175,13 @@ impl<S: Scalar> World<'_, S> {
         }
     }
 
-    /// Sphere–sphere contacts over the neighbour list, owner by owner in id order, entries in
-    /// list order; the history is updated in place and the live flag set or cleared.
-    pub(crate) fn sphere_contacts(&mut self) -> Result<(), StepError> {
+    /// All contacts, sphere by sphere in id order: first the sphere–sphere entries of its
+    /// neighbour list (in list order; history updated in place, live flag set or cleared),
+    /// then its wall contacts (walls in insertion order). One pass keeps each sphere's list
+    /// in cache for both.
+    pub(crate) fn contacts(&mut self) -> Result<(), StepError> {
         let n = self.n_spheres as usize;
+        let mut walls = self.walls.clone();
         let Split {
             mut ctx,
             spheres,
@@ -188,140 +192,143 @@ impl<S: Scalar> World<'_, S> {
         } = self.split();
         for i in 0..n {
             let base = i * k;
-            let entries = &mut slots[base..base + count[i] as usize];
-            for e in entries.iter_mut() {
+            let list = &mut slots[base..base + k];
+            let cnt = count[i] as usize;
+            // Wall entries lose their live flag here; those not hit again are removed below.
+            let mut had_wall = false;
+            for e in list[..cnt].iter_mut() {
                 if e.partner & WALL_PARTNER_FLAG != 0 {
+                    e.partner &= !LIVE_FLAG;
+                    had_wall = true;
                     continue;
                 }
                 let j = key_of(e.partner);
                 let live = sphere_pair(&mut ctx, spheres, pairs, i, j as usize, &mut e.state)?;
                 e.partner = if live { j | LIVE_FLAG } else { j };
             }
-        }
-        Ok(())
-    }
-
-    /// Sphere–wall contacts, sphere by sphere in id order, walls in insertion order. Wall
-    /// entries of the list are found by key (a sphere has a handful of entries), appended when
-    /// a contact starts and removed when it ends.
-    pub(crate) fn wall_contacts(&mut self) -> Result<(), StepError> {
-        if self.walls.is_empty() {
-            return Ok(());
-        }
-        let mut walls = self.walls.clone();
-        let Split {
-            mut ctx,
-            spheres,
-            slots,
-            count,
-            k,
-            pairs,
-        } = self.split();
-        for (si, s) in spheres.iter().enumerate() {
-            let bi = s.body as usize;
-            let base = si * k;
-            let list = &mut slots[base..base + k];
-            let mut cnt = count[si] as usize;
-            // Wall entries not hit this step lose their live flag and are removed below.
-            let mut had_wall = false;
-            for e in list[..cnt].iter_mut() {
-                if e.partner & WALL_PARTNER_FLAG != 0 {
-                    e.partner &= !LIVE_FLAG;
-                    had_wall = true;
-                }
+            if !walls.is_empty() {
+                count[i] = sphere_walls(
+                    &mut ctx,
+                    &spheres[i],
+                    i,
+                    list,
+                    cnt,
+                    had_wall,
+                    &mut walls,
+                    pairs,
+                )? as u32;
             }
-            for (wi, w) in walls.iter_mut().enumerate() {
-                let mut hits: [(u32, Vec3<S>, S); 6] = [(0, Vec3::ZERO, S::ZERO); 6];
-                let mut nh = 0usize;
-                w.shape
-                    .for_each_contact(s.position, s.radius, |face, nrm, a| {
-                        if nh < hits.len() {
-                            hits[nh] = (face, nrm, a);
-                            nh += 1;
-                        }
-                    });
-                if nh == 0 {
-                    continue;
-                }
-                let pair = &pairs[s.material as usize][w.material as usize];
-                if !pair.defined {
-                    return Err(StepError::UndefinedPair {
-                        material_a: s.material,
-                        material_b: w.material,
-                    });
-                }
-                let m_star = ctx.bodies[bi].mass;
-                for &(face, nrm, a) in &hits[..nh] {
-                    let partner = Partner {
-                        body: None,
-                        wall_velocity: w.velocity,
-                        arm_len: S::ZERO,
-                    };
-                    let key = wall_key(wi as u32, face);
-                    let mut scratch = ContactState::default();
-                    let state = if pair.tangential.on {
-                        let at = match list[..cnt].iter().position(|e| key_of(e.partner) == key) {
-                            Some(at) => at,
-                            None => {
-                                if cnt >= k {
-                                    return Err(StepError::ContactCapacity {
-                                        sphere: si as u32,
-                                        slots: k as u32,
-                                    });
-                                }
-                                list[cnt] = ContactSlot {
-                                    partner: key,
-                                    state: ContactState::default(),
-                                };
-                                cnt += 1;
-                                cnt - 1
-                            }
-                        };
-                        list[at].partner = key | LIVE_FLAG;
-                        &mut list[at].state
-                    } else {
-                        &mut scratch
-                    };
-                    match ctx.contact(
-                        pair,
-                        state,
-                        bi,
-                        partner,
-                        s.position,
-                        s.radius,
-                        nrm,
-                        a,
-                        s.radius * a,
-                        m_star,
-                    ) {
-                        Ok(f) => w.force += f,
-                        Err(Overflowed) => {
-                            return Err(StepError::Overflow {
-                                stage: Stage::WallContact,
-                                body: bi as u32,
-                                other: Other::Wall(wi as u32),
-                            })
-                        }
-                    }
-                }
-            }
-            if had_wall {
-                // Drop ended wall contacts, keeping the order of the rest.
-                let mut kept = 0;
-                for e in 0..cnt {
-                    let p = list[e].partner;
-                    if p & WALL_PARTNER_FLAG == 0 || p & LIVE_FLAG != 0 {
-                        list[kept] = list[e];
-                        kept += 1;
-                    }
-                }
-                cnt = kept;
-            }
-            count[si] = cnt as u32;
         }
         self.walls = walls;
         Ok(())
     }
+}
+
+/// Wall contacts of sphere `si` (`cnt` entries in `list`, wall entries already un-flagged when
+/// `had_wall`). Wall entries are found by key (a sphere has a handful of entries), appended
+/// when a contact starts and removed when it ends. Returns the new entry count.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn sphere_walls<S: Scalar>(
+    ctx: &mut Ctx<'_, S>,
+    s: &Sphere<S>,
+    si: usize,
+    list: &mut [ContactSlot<S>],
+    mut cnt: usize,
+    had_wall: bool,
+    walls: &mut [Wall<S>],
+    pairs: &PairTable<S>,
+) -> Result<usize, StepError> {
+    let k = list.len();
+    let bi = s.body as usize;
+    for (wi, w) in walls.iter_mut().enumerate() {
+        let mut hits: [(u32, Vec3<S>, S); 6] = [(0, Vec3::ZERO, S::ZERO); 6];
+        let mut nh = 0usize;
+        w.shape
+            .for_each_contact(s.position, s.radius, |face, nrm, a| {
+                if nh < hits.len() {
+                    hits[nh] = (face, nrm, a);
+                    nh += 1;
+                }
+            });
+        if nh == 0 {
+            continue;
+        }
+        let pair = &pairs[s.material as usize][w.material as usize];
+        if !pair.defined {
+            return Err(StepError::UndefinedPair {
+                material_a: s.material,
+                material_b: w.material,
+            });
+        }
+        let m_star = ctx.bodies[bi].mass;
+        for &(face, nrm, a) in &hits[..nh] {
+            let partner = Partner {
+                body: None,
+                wall_velocity: w.velocity,
+                arm_len: S::ZERO,
+            };
+            let key = wall_key(wi as u32, face);
+            let mut scratch = ContactState::default();
+            let state = if pair.tangential.on {
+                let at = match list[..cnt].iter().position(|e| key_of(e.partner) == key) {
+                    Some(at) => at,
+                    None => {
+                        if cnt >= k {
+                            return Err(StepError::ContactCapacity {
+                                sphere: si as u32,
+                                slots: k as u32,
+                            });
+                        }
+                        list[cnt] = ContactSlot {
+                            partner: key,
+                            state: ContactState::default(),
+                        };
+                        cnt += 1;
+                        cnt - 1
+                    }
+                };
+                list[at].partner = key | LIVE_FLAG;
+                &mut list[at].state
+            } else {
+                &mut scratch
+            };
+            match ctx.contact(
+                pair,
+                state,
+                bi,
+                partner,
+                s.position,
+                s.radius,
+                nrm,
+                a,
+                s.radius * a,
+                m_star,
+            ) {
+                Ok(f) => w.force += f,
+                Err(Overflowed) => {
+                    return Err(StepError::Overflow {
+                        stage: Stage::WallContact,
+                        body: bi as u32,
+                        other: Other::Wall(wi as u32),
+                    })
+                }
+            }
+        }
+    }
+    if had_wall {
+        // Drop ended wall contacts, keeping the order of the rest.
+        let mut kept = 0;
+        for e in 0..cnt {
+            let p = list[e].partner;
+            if p & WALL_PARTNER_FLAG == 0 || p & LIVE_FLAG != 0 {
+                list[kept] = list[e];
+                kept += 1;
+            }
+        }
+        cnt = kept;
+    }
+    Ok(cnt)
 }
 
 /// Evaluate one neighbour-list pair (a < b) if in contact, with its history `state`. Returns
@@ -365,9 +372,11 @@ fn sphere_pair<S: Scalar>(
             material_b: sj.material,
         });
     }
+    // dist is the correctly rounded root (the overlap needs every bit); the normal only
+    // needs 1/dist to within a unit, which rsqrt gives without a division.
     let mut dist = d2.sqrt();
     let n = if dist > S::ZERO {
-        d.scale(S::ONE / dist)
+        d.scale(d2.rsqrt())
     } else if let Some((u, len)) = d.normalize_with_len() {
         // |d|² underflowed (centres within ~1.5e-5 mm) but d itself is resolvable.
         dist = len;
