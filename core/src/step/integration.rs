@@ -96,19 +96,11 @@ fn l1<S: Scalar>(v: Vec3<S>) -> S {
     v.x.abs() + v.y.abs() + v.z.abs()
 }
 
-/// Unit vector along `v`, or `None` for the zero vector. `v` is first scaled exactly by a
-/// power of two so that its largest component lies in [1, 2) (accurate even for tiny ω, so
-/// rolling friction acts down to the last raw unit), then multiplied by 1/|u| from
-/// [`Scalar::rsqrt`]: no division and no square root.
+/// Unit vector along `v`, or `None` for the zero vector (accurate even for tiny ω, so rolling
+/// friction acts down to the last raw unit; no division: see [`Vec3::normalize_with_len`]).
 #[inline]
 fn unit<S: Scalar>(v: Vec3<S>) -> Option<Vec3<S>> {
-    let m = v.x.abs().max(v.y.abs()).max(v.z.abs());
-    if m == S::ZERO {
-        return None;
-    }
-    let k = -m.log2_floor();
-    let u = Vec3::new(v.x.mul_pow2(k), v.y.mul_pow2(k), v.z.mul_pow2(k));
-    Some(u.scale(u.norm2().rsqrt()))
+    v.normalize_with_len().map(|(u, _)| u)
 }
 
 fn overflow(id: usize) -> StepError {

@@ -2,8 +2,9 @@
 //! pairs, evaluation of the pair's contact terms, and accumulation of forces and torques.
 //!
 //! Geometry (seed 000 eqs. (1)–(2), DESIGN §2): α = Ri + Rj − |rj − ri|, n̂ = (rj − ri)/|rj − ri|
-//! (n̂ = +z for exactly coincident centres, a deterministic choice; near-coincident centres whose
-//! |d|² underflows are normalised after scaling by the largest component), R* = RiRj/(Ri+Rj), m* =
+//! (n̂ = +z for exactly coincident centres, a deterministic choice; centres closer than 1 mm are
+//! normalised after an exact power-of-two scaling, so n̂ stays unit, fuzz findings F1 and F4),
+//! R* = RiRj/(Ri+Rj), m* =
 //! mimj/(mi+mj) (wall: R* = Ri, m* = mi), a = √(R*α). The contact point is
 //! c = ri + n̂(Ri − α/2); lever arms run from each body's centre of mass to c.
 //!
@@ -372,17 +373,18 @@ fn sphere_pair<S: Scalar>(
             material_b: sj.material,
         });
     }
-    // dist is the correctly rounded root (the overlap needs every bit); the normal only
-    // needs 1/dist to within a unit, which rsqrt gives without a division.
-    let mut dist = d2.sqrt();
-    let n = if dist > S::ZERO {
-        d.scale(d2.rsqrt())
-    } else if let Some((u, len)) = d.normalize_with_len() {
-        // |d|² underflowed (centres within ~1.5e-5 mm) but d itself is resolvable.
-        dist = len;
-        u
+    // Beyond 1 mm the squared distance has ≥ 32 significant bits: dist is its correctly
+    // rounded root (the overlap needs every bit) and the normal only needs 1/dist to within a
+    // unit, which rsqrt gives without a division. Closer centres (huge overlaps) normalise d
+    // after an exact power-of-two scaling, because a rounded |d|² of a few raw units would
+    // leave the normal visibly non-unit (fuzz finding F4; F1 was the |d|² = 0 case); exactly
+    // coincident centres take n = +z, a deterministic choice.
+    let (n, dist) = if d2 >= S::ONE {
+        (d.scale(d2.rsqrt()), d2.sqrt())
+    } else if let Some(u_len) = d.normalize_with_len() {
+        u_len
     } else {
-        Vec3::new(S::ZERO, S::ZERO, S::ONE)
+        (Vec3::new(S::ZERO, S::ZERO, S::ONE), S::ZERO)
     };
     let overlap = rs - dist;
     let bi = si.body as usize;
