@@ -1,6 +1,7 @@
 //! Integration: symplectic Euler (kick then drift), the leapfrog form of velocity Verlet:
-//! v ← v + (F/m)·dt, x ← x + v·dt. It needs one force evaluation per step and is symplectic,
-//! so an elastic system keeps its energy bounded (the energy test checks 0.1 % over 1e5 steps).
+//! v ← v + (F_c/m + g)·dt, x ← x + v·dt (F_c the contact force; gravity as g itself). It
+//! needs one force evaluation per step and is symplectic, so an elastic system keeps its energy
+//! bounded (the energy test checks 0.1 % over 1e5 steps).
 //!
 //! Rotation:
 //! - single spheres (isotropic): ω ← ω + (T/I)·dt; orientation is not integrated;
@@ -22,9 +23,15 @@ impl<S: Scalar> World<'_, S> {
         let nb = self.n_bodies as usize;
         // Largest sphere displacement of this step (L1 norm ≥ Euclidean), for the neighbour list.
         let mut max_disp = S::ZERO;
+        let g = self.gravity;
         for (id, b) in self.bodies[..nb].iter_mut().enumerate() {
-            // (F/m)·dt, not F·(dt/m): dt/m can be a few raw units in Q32.32 (tiny dt, light body).
-            b.velocity += b.force.scale(b.inv_mass).scale(dt);
+            // (F_c/m + g)·dt, not F·(dt/m): dt/m can be a few raw units in Q32.32 (tiny dt,
+            // light body). Gravity enters as g itself, not as the rounded force m·g, which
+            // for a very light body would shift its acceleration (fuzz finding F3): the
+            // accumulator holds F_c + m·g, and subtracting the same rounded m·g that
+            // body_forces added recovers the contact force F_c exactly.
+            let contact = b.force - g.scale(b.mass);
+            b.velocity += (contact.scale(b.inv_mass) + g).scale(dt);
             let dx = b.velocity.scale(dt);
             b.position += dx;
             let w0 = b.angular_velocity;
