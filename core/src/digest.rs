@@ -145,9 +145,8 @@ impl<S: Scalar> World<'_, S> {
             h.v(s.offset);
             h.u64(s.body as u64);
             h.u64(s.material as u64);
-            let slots = self.contact_slots(i as u32);
-            h.u64(slots.len() as u64);
-            for c in slots {
+            h.u64(self.contact_slots(i as u32).count() as u64);
+            for c in self.contact_slots(i as u32) {
                 h.u64(c.partner as u64);
                 h.v(c.state.delta);
             }

@@ -204,7 +204,8 @@ pub enum StepError {
         /// The other party.
         other: Other,
     },
-    /// A sphere has more simultaneous contacts than its history slots.
+    /// A sphere owns more neighbour-list entries (contacts plus near pairs within the skin,
+    /// see [`crate::step::neighbour_list`]) than its history slots.
     ContactCapacity {
         /// Sphere id.
         sphere: u32,
@@ -242,7 +243,8 @@ impl fmt::Display for StepError {
             }
             StepError::ContactCapacity { sphere, slots } => write!(
                 f,
-                "sphere {sphere} has more than {slots} simultaneous contacts; give more contact slots"
+                "sphere {sphere} has more than {slots} contacts and near neighbours (within the \
+                 neighbour-list skin); give more contact slots"
             ),
             StepError::UndefinedPair {
                 material_a,

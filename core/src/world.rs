@@ -115,6 +115,12 @@ pub struct World<'a, S: Scalar> {
     pub(crate) steps: u64,
     pub(crate) max_radius: S,
     pub(crate) min_rayleigh_s: f64,
+    /// `false` until the neighbour list is (re)built ([`crate::step::neighbour_list`]).
+    pub(crate) list_valid: bool,
+    /// Upper bound on any sphere's displacement since the last list build, mm.
+    pub(crate) list_drift: S,
+    /// Skin of the current neighbour list, mm.
+    pub(crate) list_skin: S,
 }
 
 impl<'a, S: Scalar> World<'a, S> {
@@ -173,6 +179,9 @@ impl<'a, S: Scalar> World<'a, S> {
             steps: 0,
             max_radius: S::ZERO,
             min_rayleigh_s: f64::INFINITY,
+            list_valid: false,
+            list_drift: S::ZERO,
+            list_skin: S::ZERO,
         })
     }
 
@@ -263,6 +272,8 @@ impl<'a, S: Scalar> World<'a, S> {
     }
 
     fn note_sphere(&mut self, radius_m: f64, mat: &Material) {
+        // A new sphere is in no neighbour list yet.
+        self.list_valid = false;
         let r = S::from_f64(radius_m * LENGTH_M_TO_MM);
         if r > self.max_radius {
             self.max_radius = r;
@@ -585,8 +596,8 @@ impl<'a, S: Scalar> World<'a, S> {
         self.slots_per_sphere
     }
 
-    /// The live contact-history slots of sphere `s` (empty if out of range).
-    pub fn contact_slots(&self, s: u32) -> &[ContactSlot<S>] {
+    /// All neighbour-list entries of sphere `s`, live or not (empty if out of range).
+    fn list_entries(&self, s: u32) -> &[ContactSlot<S>] {
         if s >= self.n_spheres {
             return &[];
         }
@@ -597,11 +608,25 @@ impl<'a, S: Scalar> World<'a, S> {
         &self.slots[base..base + cnt]
     }
 
+    /// The live contact-history slots of sphere `s` (contacts of the last step that carry
+    /// tangential history), in list order; empty if out of range. Neighbour-list entries of
+    /// pairs that are not touching are skipped.
+    pub fn contact_slots(&self, s: u32) -> impl Iterator<Item = ContactSlot<S>> + '_ {
+        use crate::step::neighbour_list::LIVE_FLAG;
+        self.list_entries(s)
+            .iter()
+            .filter(|c| c.partner & LIVE_FLAG != 0)
+            .map(|c| ContactSlot {
+                partner: c.partner & !LIVE_FLAG,
+                state: c.state,
+            })
+    }
+
     /// Number of live contacts (sphere–sphere and sphere–wall) with stored history.
     pub fn contact_count(&self) -> u32 {
-        let n = self.spheres.len();
-        let off = (2 + self.current as usize) * n;
-        self.index[off..off + self.n_spheres as usize].iter().sum()
+        (0..self.n_spheres)
+            .map(|s| self.contact_slots(s).count() as u32)
+            .sum()
     }
 
     /// Total kinetic energy (translational + rotational), mJ.

@@ -225,6 +225,39 @@ pub fn isqrt_floor_u128(v: u128) -> u128 {
     }
 }
 
+/// Entries of [`RSQRT_TABLE`]: one per top-8-bit value 64..=255 of a normalised input.
+const RSQRT_TABLE_LEN: usize = 192;
+
+/// 1/√X at the midpoints of X ∈ [¼, 1) in 192 bins, in units of 2^-14 (≤ 2^15, fits `u16`):
+/// entry i = ⌊√(2^37 / (2(i + 64) + 1))⌋, i.e. 2^14/√((2(i + 64) + 1)/512). Built at compile
+/// time with integer arithmetic only.
+const RSQRT_TABLE: [u16; RSQRT_TABLE_LEN] = {
+    let mut t = [0u16; RSQRT_TABLE_LEN];
+    let mut i = 0;
+    while i < RSQRT_TABLE_LEN {
+        let idx = i as u64 + 64;
+        t[i] = ((1u64 << 37) / (2 * idx + 1)).isqrt() as u16;
+        i += 1;
+    }
+    t
+};
+
+/// Q2.62 reciprocal square root Y = 1/√X of X = x/2^64 ∈ [¼, 1) (x ≥ 2^62), with integer
+/// multiplications only: the table value (≈ 9 bits) refined by three Newton steps
+/// Y ← Y(3 − XY²)/2 (9 → 17 → 34 → ≥ 60 bits; each step only moves Y towards 1/√X from
+/// below, so Y ≤ 2 and no product overflows).
+#[inline(always)]
+fn rsqrt_q62(x: u64) -> u64 {
+    let mut y = (RSQRT_TABLE[(x >> 56) as usize - 64] as u64) << 48;
+    for _ in 0..3 {
+        let y2 = (y as u128 * y as u128) >> 62;
+        let t = (x as u128 * y2) >> 64;
+        let f = (3u128 << 62).saturating_sub(t);
+        y = ((y as u128 * f) >> 63) as u64;
+    }
+    y
+}
+
 impl Scalar for Fx {
     const ZERO: Self = Fx(0);
     const ONE: Self = Fx(ONE_RAW);
@@ -305,6 +338,42 @@ impl Scalar for Fx {
     fn floor_i64(self) -> i64 {
         self.0 >> FRAC_BITS
     }
+    /// raw_out = 2^48/√raw: with raw·4^(e/2) = X·2^64 (X ∈ [¼, 1)), 1/√raw = Y·2^(e/2 − 32),
+    /// so raw_out = Y·2^(16 + e/2) = y_q62 >> (46 − e/2), rounded to nearest. Y carries ≥ 60
+    /// correct bits and the result at most 48, so it is within one unit of 2^48/√raw.
+    #[inline]
+    fn rsqrt(self) -> Self {
+        if self.0 <= 0 {
+            return Fx::POISON;
+        }
+        let e = self.0.leading_zeros() & !1;
+        let x = (self.0 as u64) << e;
+        let y = rsqrt_q62(x);
+        let sh = 46 - e / 2;
+        Fx(((y >> (sh - 1)) + 1) as i64 >> 1)
+    }
+    #[inline]
+    fn log2_floor(self) -> i32 {
+        if self.0 == 0 || self.0 == POISON {
+            return 0;
+        }
+        63 - self.0.unsigned_abs().leading_zeros() as i32 - FRAC_BITS as i32
+    }
+    #[inline]
+    fn mul_pow2(self, k: i32) -> Self {
+        if self.0 == POISON {
+            return Fx::POISON;
+        }
+        if k >= 0 {
+            if k >= 63 {
+                return if self.0 == 0 { self } else { Fx::POISON };
+            }
+            Fx::check((self.0 as i128) << k)
+        } else {
+            let s = (-k).min(64) as u32;
+            Fx(((self.0 as i128 + (1i128 << (s - 1))) >> s) as i64)
+        }
+    }
 }
 
 #[cfg(test)]
@@ -377,6 +446,48 @@ mod tests {
             let n = v % (d << 63);
             assert_eq!(udivrem(n, d), (n / d, n % d), "{n} / {d}");
         }
+    }
+
+    #[test]
+    fn rsqrt_within_one_unit() {
+        // Against an exact integer reference: r = 2^48/√raw ⇔ r²·raw = 2^96.
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        for k in 0..100_000u32 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let raw = ((x >> (k % 63)) | 1) as i64 & i64::MAX;
+            let r = Fx::from_raw(raw).rsqrt().raw() as u128;
+            let target = 1u128 << 96;
+            // The true value lies in [r − 1, r + 1]: (r−1)²·raw ≤ 2^96 ≤ (r+1)²·raw.
+            let lo = (r - 1)
+                .checked_mul(r - 1)
+                .and_then(|q| q.checked_mul(raw as u128));
+            let hi = (r + 1)
+                .checked_mul(r + 1)
+                .and_then(|q| q.checked_mul(raw as u128));
+            assert!(lo.is_none_or(|l| l <= target), "rsqrt({raw}) = {r} too big");
+            assert!(
+                hi.is_none_or(|h| h >= target),
+                "rsqrt({raw}) = {r} too small"
+            );
+        }
+        assert_eq!(Fx::from_int(4).rsqrt(), Fx::HALF);
+        assert_eq!(Fx::from_f64(0.25).rsqrt(), Fx::from_int(2));
+        assert!(!Fx::ZERO.rsqrt().is_valid());
+        assert!(!Fx::from_int(-1).rsqrt().is_valid());
+    }
+
+    #[test]
+    fn pow2_scaling_is_exact() {
+        let a = Fx::from_f64(-0.375);
+        assert_eq!(a.log2_floor(), -2);
+        assert_eq!(a.mul_pow2(3).to_f64(), -3.0);
+        assert_eq!(a.mul_pow2(-1).to_f64(), -0.1875);
+        assert_eq!(Fx::from_raw(1).log2_floor(), -32);
+        assert_eq!(Fx::from_raw(1).mul_pow2(31).to_f64(), 0.5);
+        assert!(!Fx::ONE.mul_pow2(31).is_valid());
+        assert_eq!(Fx::from_int(3).log2_floor(), 1);
     }
 
     #[test]

@@ -50,6 +50,15 @@ pub trait Scalar:
     fn mul_int(self, k: i32) -> Self;
     /// Floor to an integer, saturating at the `i64` range (grid binning).
     fn floor_i64(self) -> i64;
+    /// Reciprocal square root 1/√x for x > 0 (invalid for x ≤ 0). Fixed point: integer-only
+    /// Newton iteration, within one unit of the last place (deterministic, not always the
+    /// correctly rounded value); it replaces a square root plus a division.
+    fn rsqrt(self) -> Self;
+    /// ⌊log₂|x|⌋ for x ≠ 0 (0 for x = 0 or invalid x).
+    fn log2_floor(self) -> i32;
+    /// x·2^k, exact when the result is representable (fixed point rounds right shifts to
+    /// nearest and poisons on overflow).
+    fn mul_pow2(self, k: i32) -> Self;
 
     /// a·b + c·d + e·f with a single rounding in fixed point (exact products summed in 128 bits).
     #[inline(always)]
@@ -124,5 +133,24 @@ impl Scalar for f64 {
     #[inline]
     fn floor_i64(self) -> i64 {
         libm::floor(self) as i64
+    }
+    #[inline]
+    fn rsqrt(self) -> Self {
+        if self > 0.0 {
+            1.0 / libm::sqrt(self)
+        } else {
+            f64::NAN
+        }
+    }
+    #[inline]
+    fn log2_floor(self) -> i32 {
+        if self == 0.0 || !self.is_finite() {
+            return 0;
+        }
+        libm::frexp(self).1 - 1
+    }
+    #[inline]
+    fn mul_pow2(self, k: i32) -> Self {
+        libm::scalbn(self, k)
     }
 }

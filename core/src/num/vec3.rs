@@ -70,18 +70,21 @@ impl<S: Scalar> Vec3<S> {
     }
     /// Unit vector along `self` and the length, or `None` for the zero vector.
     ///
-    /// The vector is first divided by its largest component, so that vectors whose squared
-    /// length would round to zero in Q32.32 (components below ~1.5e-5) still get an accurate
-    /// direction and length.
+    /// The vector is first scaled exactly by a power of two so that its largest component lies
+    /// in [1, 2): then |u|² ∈ [1, 12) keeps full relative precision even for vectors whose
+    /// squared length would round to (nearly) zero in Q32.32, and the result is a unit vector
+    /// to about 2⁻³¹ (fuzz finding F4). u·rsqrt(|u|²) needs no division or square root.
     #[inline]
     pub fn normalize_with_len(self) -> Option<(Self, S)> {
         let m = self.x.abs().max(self.y.abs()).max(self.z.abs());
         if m == S::ZERO {
             return None;
         }
-        let u = self.scale(S::ONE / m);
-        let nu = u.norm();
-        Some((u.scale(S::ONE / nu), m * nu))
+        let k = -m.log2_floor();
+        let u = Vec3::new(self.x.mul_pow2(k), self.y.mul_pow2(k), self.z.mul_pow2(k));
+        let q = u.norm2();
+        let r = q.rsqrt();
+        Some((u.scale(r), (q * r).mul_pow2(-k)))
     }
 
     /// Component-wise product.

@@ -1,5 +1,7 @@
-//! Body forces: clear the accumulators and add gravity F = m·g (N). Later effects (air drag,
-//! buoyancy) belong here as separate terms.
+//! Body forces: clear the accumulators and add gravity F = m·g (N), so that `Body::force`
+//! reports the total force of the step. Later effects (air drag, buoyancy) belong here as
+//! separate terms. The integrator takes gravity out again and applies it as the acceleration g
+//! itself, exact for any mass (fuzz finding F3).
 
 use crate::error::{Other, Stage, StepError};
 use crate::num::{Scalar, Vec3};

@@ -1,5 +1,6 @@
-//! Broad phase: a dense cell grid over the spheres' bounding box, cell edge ≥ 2·R_max, filled
-//! by counting sort into the caller's `cells` and `sphere_index` arrays. O(N) per step, no
+//! Broad phase: a dense cell grid over the spheres' bounding box, cell edge ≥ 2·R_max + skin,
+//! used only when the neighbour list is rebuilt ([`super::neighbour_list`]); filled
+//! by counting sort into the caller's `cells` and `sphere_index` arrays. O(N) per rebuild, no
 //! allocation, deterministic: spheres are binned in id order and pairs are visited cell by
 //! cell over a half neighbourhood (the cell itself and 13 of its 26 neighbours), so each pair
 //! is seen once.
@@ -37,8 +38,8 @@ pub(crate) const HALF_NEIGHBOURS: [[i32; 3]; 13] = [
 ];
 
 impl<S: Scalar> World<'_, S> {
-    /// Bin spheres into cells; returns the grid dimensions.
-    pub(crate) fn bin_spheres(&mut self) -> Grid {
+    /// Bin spheres into cells of edge ≥ 2·R_max + `reach` (mm); returns the grid dimensions.
+    pub(crate) fn bin_spheres(&mut self, reach: S) -> Grid {
         let n = self.n_spheres as usize;
         let cap = self.spheres.len();
         if n == 0 {
@@ -52,9 +53,9 @@ impl<S: Scalar> World<'_, S> {
             lo = Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
             hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
         }
-        // Cell edge 2·R_max plus a 2^-16 relative margin, so that rounding in the binning
-        // products below can never put two touching spheres two cells apart.
-        let two_r = self.max_radius.mul_int(2);
+        // Cell edge 2·R_max + reach plus a 2^-16 relative margin, so that rounding in the
+        // binning products below can never put two spheres within reach two cells apart.
+        let two_r = self.max_radius.mul_int(2) + reach;
         let edge = two_r + two_r / S::ONE.mul_int(65_536);
         let ext = hi - lo;
         // Integer cell counts at edge 2·R_max (floor(ext/edge) + 1, saturating).

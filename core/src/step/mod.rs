@@ -1,7 +1,8 @@
 //! The step pipeline (DESIGN §6), one module per stage:
 //!
 //! 1. [`body_forces`]: clear accumulators, add gravity (and later drag);
-//! 2. [`broad_phase`]: cell grid with counting sort → candidate pairs in a fixed order;
+//! 2. [`neighbour_list`]: Verlet list with a skin, rebuilt from the [`broad_phase`] cell grid
+//!    (counting sort, fixed order) only when a sphere may have moved by half the skin;
 //! 3. [`narrow_phase`]: sphere–sphere and sphere–wall geometry, then the contact terms of
 //!    [`crate::pair::PairParams`]; forces and torques accumulate into the bodies;
 //! 4. [`integration`]: symplectic Euler (kick–drift), the leapfrog form of velocity Verlet,
@@ -16,6 +17,7 @@ pub mod body_forces;
 pub mod broad_phase;
 pub mod integration;
 pub mod narrow_phase;
+pub mod neighbour_list;
 pub mod wall_motion;
 
 use crate::error::StepError;
@@ -41,10 +43,8 @@ impl<S: Scalar> World<'_, S> {
             });
         }
         self.apply_body_forces()?;
-        let grid = self.bin_spheres();
-        self.sphere_contacts(grid)?;
-        self.wall_contacts()?;
-        self.current ^= 1;
+        self.ensure_neighbour_list()?;
+        self.contacts()?;
         self.integrate()?;
         self.move_walls()?;
         self.time += self.dt;

@@ -2,29 +2,27 @@
 //! pairs, evaluation of the pair's contact terms, and accumulation of forces and torques.
 //!
 //! Geometry (seed 000 eqs. (1)–(2), DESIGN §2): α = Ri + Rj − |rj − ri|, n̂ = (rj − ri)/|rj − ri|
-//! (n̂ = +z for exactly coincident centres, a deterministic choice; near-coincident centres whose
-//! |d|² underflows are normalised after scaling by the largest component), R* = RiRj/(Ri+Rj), m* =
+//! (n̂ = +z for exactly coincident centres, a deterministic choice; centres closer than 1 mm are
+//! normalised after an exact power-of-two scaling, so n̂ stays unit, fuzz findings F1 and F4),
+//! R* = RiRj/(Ri+Rj), m* =
 //! mimj/(mi+mj) (wall: R* = Ri, m* = mi), a = √(R*α). The contact point is
 //! c = ri + n̂(Ri − α/2); lever arms run from each body's centre of mass to c.
 //!
-//! One validity check per contact (force, torques, history) turns any fixed-point overflow
-//! into [`StepError::Overflow`] naming both parties.
+//! Sphere pairs come from the neighbour list ([`super::neighbour_list`]), whose entries hold
+//! the contact history, read and updated in place. One validity check per contact (force,
+//! torques, history) turns any fixed-point overflow into [`StepError::Overflow`] naming both
+//! parties.
 
-use super::broad_phase::{Grid, HALF_NEIGHBOURS};
+use super::neighbour_list::{key_of, LIVE_FLAG};
 use crate::body::{Body, Sphere};
-use crate::contact::history::{lookup, wall_key};
-use crate::contact::{ContactKinematics, ContactSlot, ContactState};
+use crate::contact::history::wall_key;
+use crate::contact::{ContactKinematics, ContactSlot, ContactState, WALL_PARTNER_FLAG};
 use crate::error::{Other, Stage, StepError};
 use crate::material::MAX_MATERIALS;
 use crate::num::{Scalar, Vec3};
 use crate::pair::PairParams;
+use crate::wall::Wall;
 use crate::world::World;
-
-/// Why a single contact failed.
-enum Fail {
-    Overflow,
-    Capacity,
-}
 
 /// The j side of a contact.
 struct Partner<S> {
@@ -39,25 +37,21 @@ struct Partner<S> {
 /// Views the contact loops need, split from the world.
 struct Ctx<'w, S: Scalar> {
     bodies: &'w mut [Body<S>],
-    old_slots: &'w [ContactSlot<S>],
-    new_slots: &'w mut [ContactSlot<S>],
-    old_count: &'w [u32],
-    new_count: &'w mut [u32],
-    k: usize,
     dt: S,
 }
 
+/// A contact overflowed (the caller names the parties).
+struct Overflowed;
+
 impl<S: Scalar> Ctx<'_, S> {
-    /// Evaluate one contact between sphere `owner` (body `bi`, side i) and a partner,
-    /// accumulate the forces and store the history in `owner`'s new slots. Returns the force
-    /// on j (N).
+    /// Evaluate one contact between a sphere of body `bi` (side i) and a partner, with its
+    /// history `state` (updated in place), and accumulate the forces. Returns the force on j (N).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn contact(
         &mut self,
         pair: &PairParams<S>,
-        owner: u32,
-        key: u32,
+        state: &mut ContactState<S>,
         bi: usize,
         j: Partner<S>,
         p_i: Vec3<S>,
@@ -66,7 +60,7 @@ impl<S: Scalar> Ctx<'_, S> {
         overlap: S,
         r_star_alpha: S,
         m_star: S,
-    ) -> Result<Vec3<S>, Fail> {
+    ) -> Result<Vec3<S>, Overflowed> {
         let bod_i = &self.bodies[bi];
         let (pos_i, vel_i, w_i, clump_i) = (
             bod_i.position,
@@ -116,17 +110,10 @@ impl<S: Scalar> Ctx<'_, S> {
             lever_i,
             lever_j,
         };
-        let ow = owner as usize;
-        let mut state = if pair.tangential.on {
-            let base = ow * self.k;
-            lookup(
-                &self.old_slots[base..base + self.old_count[ow] as usize],
-                key,
-            )
-        } else {
-            ContactState::default()
-        };
-        let out = pair.evaluate(&kin, &mut state);
+        if !pair.tangential.on {
+            *state = ContactState::default();
+        }
+        let out = pair.evaluate(&kin, state);
         let f = n.scale(out.normal) + out.tangential;
         let ti = arm_i.cross(f);
         let tj = arm_j.cross(f);
@@ -137,7 +124,7 @@ impl<S: Scalar> Ctx<'_, S> {
             & out.roll_j.is_valid()
             & state.delta.is_valid())
         {
-            return Err(Fail::Overflow);
+            return Err(Overflowed);
         }
         {
             let b = &mut self.bodies[bi];
@@ -151,17 +138,6 @@ impl<S: Scalar> Ctx<'_, S> {
             b.torque += tj;
             b.roll_torque += out.roll_j;
         }
-        if pair.tangential.on {
-            let cnt = self.new_count[ow] as usize;
-            if cnt >= self.k {
-                return Err(Fail::Capacity);
-            }
-            self.new_slots[ow * self.k + cnt] = ContactSlot {
-                partner: key,
-                state,
-            };
-            self.new_count[ow] = cnt as u32 + 1;
-        }
         Ok(f)
     }
 }
@@ -172,9 +148,11 @@ type PairTable<S> = [[PairParams<S>; MAX_MATERIALS]; MAX_MATERIALS];
 struct Split<'w, S: Scalar> {
     ctx: Ctx<'w, S>,
     spheres: &'w [Sphere<S>],
-    cell_of: &'w [u32],
-    sorted: &'w [u32],
-    cells: &'w [u32],
+    /// The live half of the neighbour list.
+    slots: &'w mut [ContactSlot<S>],
+    /// Entry counts of the live half.
+    count: &'w mut [u32],
+    k: usize,
     pairs: &'w PairTable<S>,
 }
 
@@ -183,170 +161,63 @@ impl<S: Scalar> World<'_, S> {
         let cap = self.spheres.len();
         let k = self.slots_per_sphere as usize;
         let cur = self.current as usize;
-        let (h0, h1) = self.slots.split_at_mut(cap * k);
-        let h1 = &mut h1[..cap * k];
-        let (old_slots, new_slots) = if cur == 0 { (&*h0, h1) } else { (&*h1, h0) };
-        let (head, counts) = self.index.split_at_mut(2 * cap);
-        let (c0, c1) = counts.split_at_mut(cap);
-        let c1 = &mut c1[..cap];
-        let (old_count, new_count) = if cur == 0 { (&*c0, c1) } else { (&*c1, c0) };
-        let (cell_of, sorted) = head.split_at(cap);
+        let slots = &mut self.slots[cur * cap * k..(cur + 1) * cap * k];
+        let count = &mut self.index[(2 + cur) * cap..(3 + cur) * cap];
         Split {
             ctx: Ctx {
                 bodies: &mut self.bodies[..],
-                old_slots,
-                new_slots,
-                old_count,
-                new_count,
-                k,
                 dt: self.dt,
             },
             spheres: &self.spheres[..self.n_spheres as usize],
-            cell_of,
-            sorted,
-            cells: &self.cells[..],
+            slots,
+            count,
+            k,
             pairs: &self.pairs,
         }
     }
 
-    /// Sphere–sphere contacts over the half-neighbourhood cell sweep.
-    pub(crate) fn sphere_contacts(&mut self, grid: Grid) -> Result<(), StepError> {
+    /// All contacts, sphere by sphere in id order: first the sphere–sphere entries of its
+    /// neighbour list (in list order; history updated in place, live flag set or cleared),
+    /// then its wall contacts (walls in insertion order). One pass keeps each sphere's list
+    /// in cache for both.
+    pub(crate) fn contacts(&mut self) -> Result<(), StepError> {
         let n = self.n_spheres as usize;
-        let Split {
-            mut ctx,
-            spheres,
-            cell_of,
-            sorted,
-            cells,
-            pairs,
-        } = self.split();
-        for c in ctx.new_count[..n].iter_mut() {
-            *c = 0;
-        }
-        if n == 0 {
-            return Ok(());
-        }
-        let [dx, dy, dz] = grid.dims;
-        for idx in 0..n {
-            let i = sorted[idx] as usize;
-            let c = cell_of[i];
-            let cx = c % dx;
-            let cy = (c / dx) % dy;
-            let cz = c / (dx * dy);
-            // Same cell: partners after i in the sorted order.
-            let end = cells[c as usize + 1] as usize;
-            let si = &spheres[i];
-            let (pi, ri, body_i) = (si.position, si.radius, si.body);
-            // Cheap per-axis rejection with sphere i's data hoisted; the full test and the
-            // contact evaluation run only for the few candidates that pass.
-            let near = |sj: &Sphere<S>| -> bool {
-                let rs = ri + sj.radius;
-                sj.body != body_i
-                    && (sj.position.x - pi.x).abs() < rs
-                    && (sj.position.y - pi.y).abs() < rs
-                    && (sj.position.z - pi.z).abs() < rs
-            };
-            for &j in &sorted[idx + 1..end] {
-                if near(&spheres[j as usize]) {
-                    sphere_pair(&mut ctx, spheres, pairs, i, j as usize)?;
-                }
-            }
-            for off in HALF_NEIGHBOURS.iter() {
-                let nx = cx as i64 + off[0] as i64;
-                let ny = cy as i64 + off[1] as i64;
-                let nz = cz as i64 + off[2] as i64;
-                if nx < 0
-                    || ny < 0
-                    || nz < 0
-                    || nx >= dx as i64
-                    || ny >= dy as i64
-                    || nz >= dz as i64
-                {
-                    continue;
-                }
-                let nc = ((nz as u32 * dy + ny as u32) * dx + nx as u32) as usize;
-                let (s, e) = (cells[nc] as usize, cells[nc + 1] as usize);
-                for &j in &sorted[s..e] {
-                    if near(&spheres[j as usize]) {
-                        sphere_pair(&mut ctx, spheres, pairs, i, j as usize)?;
-                    }
-                }
-            }
-        }
-        Ok(())
-    }
-
-    /// Sphere–wall contacts, sphere by sphere in id order, walls in insertion order.
-    pub(crate) fn wall_contacts(&mut self) -> Result<(), StepError> {
-        if self.walls.is_empty() {
-            return Ok(());
-        }
         let mut walls = self.walls.clone();
         let Split {
             mut ctx,
             spheres,
+            slots,
+            count,
+            k,
             pairs,
-            ..
         } = self.split();
-        for (si, s) in spheres.iter().enumerate() {
-            let bi = s.body as usize;
-            for (wi, w) in walls.iter_mut().enumerate() {
-                let mut hits: [(u32, Vec3<S>, S); 6] = [(0, Vec3::ZERO, S::ZERO); 6];
-                let mut nh = 0usize;
-                w.shape
-                    .for_each_contact(s.position, s.radius, |face, nrm, a| {
-                        if nh < hits.len() {
-                            hits[nh] = (face, nrm, a);
-                            nh += 1;
-                        }
-                    });
-                if nh == 0 {
+        for i in 0..n {
+            let base = i * k;
+            let list = &mut slots[base..base + k];
+            let cnt = count[i] as usize;
+            // Wall entries lose their live flag here; those not hit again are removed below.
+            let mut had_wall = false;
+            for e in list[..cnt].iter_mut() {
+                if e.partner & WALL_PARTNER_FLAG != 0 {
+                    e.partner &= !LIVE_FLAG;
+                    had_wall = true;
                     continue;
                 }
-                let pair = &pairs[s.material as usize][w.material as usize];
-                if !pair.defined {
-                    return Err(StepError::UndefinedPair {
-                        material_a: s.material,
-                        material_b: w.material,
-                    });
-                }
-                let m_star = ctx.bodies[bi].mass;
-                for &(face, nrm, a) in &hits[..nh] {
-                    let partner = Partner {
-                        body: None,
-                        wall_velocity: w.velocity,
-                        arm_len: S::ZERO,
-                    };
-                    let key = wall_key(wi as u32, face);
-                    match ctx.contact(
-                        pair,
-                        si as u32,
-                        key,
-                        bi,
-                        partner,
-                        s.position,
-                        s.radius,
-                        nrm,
-                        a,
-                        s.radius * a,
-                        m_star,
-                    ) {
-                        Ok(f) => w.force += f,
-                        Err(Fail::Overflow) => {
-                            return Err(StepError::Overflow {
-                                stage: Stage::WallContact,
-                                body: bi as u32,
-                                other: Other::Wall(wi as u32),
-                            })
-                        }
-                        Err(Fail::Capacity) => {
-                            return Err(StepError::ContactCapacity {
-                                sphere: si as u32,
-                                slots: ctx.k as u32,
-                            })
-                        }
-                    }
-                }
+                let j = key_of(e.partner);
+                let live = sphere_pair(&mut ctx, spheres, pairs, i, j as usize, &mut e.state)?;
+                e.partner = if live { j | LIVE_FLAG } else { j };
+            }
+            if !walls.is_empty() {
+                count[i] = sphere_walls(
+                    &mut ctx,
+                    &spheres[i],
+                    i,
+                    list,
+                    cnt,
+                    had_wall,
+                    &mut walls,
+                    pairs,
+                )? as u32;
             }
         }
         self.walls = walls;
@@ -354,27 +225,133 @@ impl<S: Scalar> World<'_, S> {
     }
 }
 
-/// Test one candidate sphere pair and evaluate it if in contact.
+/// Wall contacts of sphere `si` (`cnt` entries in `list`, wall entries already un-flagged when
+/// `had_wall`). Wall entries are found by key (a sphere has a handful of entries), appended
+/// when a contact starts and removed when it ends. Returns the new entry count.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn sphere_walls<S: Scalar>(
+    ctx: &mut Ctx<'_, S>,
+    s: &Sphere<S>,
+    si: usize,
+    list: &mut [ContactSlot<S>],
+    mut cnt: usize,
+    had_wall: bool,
+    walls: &mut [Wall<S>],
+    pairs: &PairTable<S>,
+) -> Result<usize, StepError> {
+    let k = list.len();
+    let bi = s.body as usize;
+    for (wi, w) in walls.iter_mut().enumerate() {
+        let mut hits: [(u32, Vec3<S>, S); 6] = [(0, Vec3::ZERO, S::ZERO); 6];
+        let mut nh = 0usize;
+        w.shape
+            .for_each_contact(s.position, s.radius, |face, nrm, a| {
+                if nh < hits.len() {
+                    hits[nh] = (face, nrm, a);
+                    nh += 1;
+                }
+            });
+        if nh == 0 {
+            continue;
+        }
+        let pair = &pairs[s.material as usize][w.material as usize];
+        if !pair.defined {
+            return Err(StepError::UndefinedPair {
+                material_a: s.material,
+                material_b: w.material,
+            });
+        }
+        let m_star = ctx.bodies[bi].mass;
+        for &(face, nrm, a) in &hits[..nh] {
+            let partner = Partner {
+                body: None,
+                wall_velocity: w.velocity,
+                arm_len: S::ZERO,
+            };
+            let key = wall_key(wi as u32, face);
+            let mut scratch = ContactState::default();
+            let state = if pair.tangential.on {
+                let at = match list[..cnt].iter().position(|e| key_of(e.partner) == key) {
+                    Some(at) => at,
+                    None => {
+                        if cnt >= k {
+                            return Err(StepError::ContactCapacity {
+                                sphere: si as u32,
+                                slots: k as u32,
+                            });
+                        }
+                        list[cnt] = ContactSlot {
+                            partner: key,
+                            state: ContactState::default(),
+                        };
+                        cnt += 1;
+                        cnt - 1
+                    }
+                };
+                list[at].partner = key | LIVE_FLAG;
+                &mut list[at].state
+            } else {
+                &mut scratch
+            };
+            match ctx.contact(
+                pair,
+                state,
+                bi,
+                partner,
+                s.position,
+                s.radius,
+                nrm,
+                a,
+                s.radius * a,
+                m_star,
+            ) {
+                Ok(f) => w.force += f,
+                Err(Overflowed) => {
+                    return Err(StepError::Overflow {
+                        stage: Stage::WallContact,
+                        body: bi as u32,
+                        other: Other::Wall(wi as u32),
+                    })
+                }
+            }
+        }
+    }
+    if had_wall {
+        // Drop ended wall contacts, keeping the order of the rest.
+        let mut kept = 0;
+        for e in 0..cnt {
+            let p = list[e].partner;
+            if p & WALL_PARTNER_FLAG == 0 || p & LIVE_FLAG != 0 {
+                list[kept] = list[e];
+                kept += 1;
+            }
+        }
+        cnt = kept;
+    }
+    Ok(cnt)
+}
+
+/// Evaluate one neighbour-list pair (a < b) if in contact, with its history `state`. Returns
+/// whether the pair touches and keeps history; a pair that does not touch has its history
+/// cleared.
 #[inline(never)]
 fn sphere_pair<S: Scalar>(
     ctx: &mut Ctx<'_, S>,
     spheres: &[Sphere<S>],
     pairs: &PairTable<S>,
-    a: usize,
-    b: usize,
-) -> Result<(), StepError> {
-    // The lower id owns the contact and is side i.
-    let (i, j) = if a < b { (a, b) } else { (b, a) };
+    i: usize,
+    j: usize,
+    state: &mut ContactState<S>,
+) -> Result<bool, StepError> {
     let si = &spheres[i];
     let sj = &spheres[j];
-    if si.body == sj.body {
-        return Ok(());
-    }
     let d = sj.position - si.position;
     let rs = si.radius + sj.radius;
     // Cheap per-axis rejection before the squared distance.
     if d.x.abs() >= rs || d.y.abs() >= rs || d.z.abs() >= rs {
-        return Ok(());
+        *state = ContactState::default();
+        return Ok(false);
     }
     let d2 = d.norm2();
     let overflow = || StepError::Overflow {
@@ -386,7 +363,8 @@ fn sphere_pair<S: Scalar>(
         return Err(overflow());
     }
     if d2 >= rs * rs {
-        return Ok(());
+        *state = ContactState::default();
+        return Ok(false);
     }
     let pair = &pairs[si.material as usize][sj.material as usize];
     if !pair.defined {
@@ -395,15 +373,18 @@ fn sphere_pair<S: Scalar>(
             material_b: sj.material,
         });
     }
-    let mut dist = d2.sqrt();
-    let n = if dist > S::ZERO {
-        d.scale(S::ONE / dist)
-    } else if let Some((u, len)) = d.normalize_with_len() {
-        // |d|² underflowed (centres within ~1.5e-5 mm) but d itself is resolvable.
-        dist = len;
-        u
+    // Beyond 1 mm the squared distance has ≥ 32 significant bits: dist is its correctly
+    // rounded root (the overlap needs every bit) and the normal only needs 1/dist to within a
+    // unit, which rsqrt gives without a division. Closer centres (huge overlaps) normalise d
+    // after an exact power-of-two scaling, because a rounded |d|² of a few raw units would
+    // leave the normal visibly non-unit (fuzz finding F4; F1 was the |d|² = 0 case); exactly
+    // coincident centres take n = +z, a deterministic choice.
+    let (n, dist) = if d2 >= S::ONE {
+        (d.scale(d2.rsqrt()), d2.sqrt())
+    } else if let Some(u_len) = d.normalize_with_len() {
+        u_len
     } else {
-        Vec3::new(S::ZERO, S::ZERO, S::ONE)
+        (Vec3::new(S::ZERO, S::ZERO, S::ONE), S::ZERO)
     };
     let overlap = rs - dist;
     let bi = si.body as usize;
@@ -432,8 +413,7 @@ fn sphere_pair<S: Scalar>(
     };
     match ctx.contact(
         pair,
-        i as u32,
-        j as u32,
+        state,
         bi,
         partner,
         si.position,
@@ -443,11 +423,7 @@ fn sphere_pair<S: Scalar>(
         r_star_alpha,
         m_star,
     ) {
-        Ok(_) => Ok(()),
-        Err(Fail::Overflow) => Err(overflow()),
-        Err(Fail::Capacity) => Err(StepError::ContactCapacity {
-            sphere: i as u32,
-            slots: ctx.k as u32,
-        }),
+        Ok(_) => Ok(pair.tangential.on),
+        Err(Overflowed) => Err(overflow()),
     }
 }
