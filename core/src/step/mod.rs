@@ -4,15 +4,18 @@
 //! 2. [`broad_phase`]: cell grid with counting sort → candidate pairs in a fixed order;
 //! 3. [`narrow_phase`]: sphere–sphere and sphere–wall geometry, then the contact terms of
 //!    [`crate::pair::PairParams`]; forces and torques accumulate into the bodies;
-//! 4. [`integration`]: symplectic Euler (kick–drift), the leapfrog form of velocity Verlet,
+//! 4. [`bonds`]: bonded-particle loads, breakage and scheduled bond formation (between the
+//!    narrow phase and integration);
+//! 5. [`integration`]: symplectic Euler (kick–drift), the leapfrog form of velocity Verlet,
 //!    with rolling friction applied so it never reverses ω; clumps through their quaternion;
-//! 5. [`wall_motion`]: walls advance at their prescribed velocity.
+//! 6. [`wall_motion`]: walls advance at their prescribed velocity.
 //!
 //! In fixed point, force accumulation is integer addition, so its result does not depend on
 //! the order of contacts (DESIGN §5); the order is fixed anyway so the f64 reference is also
 //! reproducible.
 
 pub mod body_forces;
+pub mod bonds;
 pub mod broad_phase;
 pub mod integration;
 pub mod narrow_phase;
@@ -44,6 +47,7 @@ impl<S: Scalar> World<'_, S> {
         let grid = self.bin_spheres();
         self.sphere_contacts(grid)?;
         self.wall_contacts()?;
+        self.bond_forces()?;
         self.current ^= 1;
         self.integrate()?;
         self.move_walls()?;

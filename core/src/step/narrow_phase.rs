@@ -45,6 +45,8 @@ struct Ctx<'w, S: Scalar> {
     new_count: &'w mut [u32],
     k: usize,
     dt: S,
+    /// Live bonds, sorted by sphere pair: bonded pairs get no contact force.
+    bonded: &'w [crate::bond::Bond<S>],
 }
 
 impl<S: Scalar> Ctx<'_, S> {
@@ -200,6 +202,7 @@ impl<S: Scalar> World<'_, S> {
                 new_count,
                 k,
                 dt: self.dt,
+                bonded: &self.bond_table.bonds[..self.bond_table.n as usize],
             },
             spheres: &self.spheres[..self.n_spheres as usize],
             cell_of,
@@ -386,6 +389,9 @@ fn sphere_pair<S: Scalar>(
         return Err(overflow());
     }
     if d2 >= rs * rs {
+        return Ok(());
+    }
+    if crate::bond::arena::is_bonded(ctx.bonded, i as u32, j as u32) {
         return Ok(());
     }
     let pair = &pairs[si.material as usize][sj.material as usize];
