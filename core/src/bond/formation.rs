@@ -13,8 +13,9 @@
 //! Stability: each new bond lowers the world's bond time-step bound
 //! [`World::bond_max_timestep_s`] = [`BOND_DT_FRACTION`]/ω, with ω² the larger of
 //! K·A·(1/mA + 1/mB) (axial or shear spring on the two masses) and
-//! (max(Kn·J/2, Kt·J) + K·A·r²)·(1/IA + 1/IB) (rotation, r the longer lever arm, I the smallest
-//! principal moments). The step refuses a dt above it ([`crate::error::StepError::TimeStepTooLarge`]).
+//! Σ_ends (max(Kn·J/2, Kt·J) + K·A·r²)/I (rotation of each end, r its lever arm to the bond
+//! centre, I its smallest principal moment), K = max(Kn, Kt). Kinematic ends (1/m = 0) add
+//! nothing. The step refuses a dt above it ([`crate::error::StepError::TimeStepTooLarge`]).
 
 use super::arena::{pair_key, Bond, Scheduled, MAX_SCHEDULED_FORMATIONS};
 use super::error::BondError;
@@ -266,22 +267,26 @@ impl<'a, S: Scalar> World<'a, S> {
             let v = b.inv_inertia.to_f64();
             v[0].max(v[1]).max(v[2])
         };
-        let inv_i = max_inv_i(ba) + max_inv_i(bb);
         let k_lin = p.kn_area_f64.max(p.kt_area_f64);
+        // Bond centre as in the kinematics: c = pa + n̂·(d + Ra − Rb)/2.
         let pa = sa.position.to_f64();
         let pb = sb.position.to_f64();
-        let c = [
-            (pa[0] + pb[0]) / 2.0,
-            (pa[1] + pb[1]) / 2.0,
-            (pa[2] + pb[2]) / 2.0,
-        ];
-        let arm2 = |b: &crate::body::Body<S>| {
-            let x = b.position.to_f64();
-            let d = [c[0] - x[0], c[1] - x[1], c[2] - x[2]];
-            d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+        let dv = [pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]];
+        let d = libm::sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]);
+        let t = if d > 0.0 {
+            (d + sa.radius.to_f64() - sb.radius.to_f64()) / (2.0 * d)
+        } else {
+            0.0
         };
-        let r2 = arm2(ba).max(arm2(bb));
-        let w2 = (k_lin * inv_m).max((p.rot_stiffness_f64 + k_lin * r2) * inv_i);
+        let c = [pa[0] + t * dv[0], pa[1] + t * dv[1], pa[2] + t * dv[2]];
+        // Rotational term per end: (max(Kn·J/2, Kt·J) + K·A·r²)/I_min of that end's body.
+        let rot = |b: &crate::body::Body<S>| {
+            let x = b.position.to_f64();
+            let e = [c[0] - x[0], c[1] - x[1], c[2] - x[2]];
+            let r2 = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+            (p.rot_stiffness_f64 + k_lin * r2) * max_inv_i(b)
+        };
+        let w2 = (k_lin * inv_m).max(rot(ba) + rot(bb));
         if w2 > 0.0 {
             BOND_DT_FRACTION / libm::sqrt(w2) / TIME_S_TO_MS
         } else {
