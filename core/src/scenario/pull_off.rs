@@ -274,15 +274,15 @@ impl PullOff {
     }
 
     /// Run up to `max_steps` steps or until the junction breaks, calling `record(displacement
-    /// mm, pull force N)` after every step.
+    /// mm, pull force N)` after every step. The displacement is the gripper's travel,
+    /// speed × simulated time (the pod is kinematic), so consecutive calls continue one run.
     pub fn run<S: Scalar>(
         &self,
         w: &mut World<'_, S>,
         max_steps: u64,
         mut record: impl FnMut(f64, f64),
     ) -> Result<PullOffResult, ScenarioError> {
-        let start = w.body(self.pod_body()).position.to_f64();
-        let u = self.direction();
+        let speed_mm_ms = self.pull_speed_m_s * crate::units::VELOCITY_M_S_TO_MM_MS;
         let mut out = PullOffResult {
             detachment_force_n: 0.0,
             detachment_displacement_mm: 0.0,
@@ -290,13 +290,13 @@ impl PullOff {
             stalk_broke_first: false,
         };
         let is_junction = |b: &crate::bond::Bond<S>| b.sphere_b >= self.stalk_spheres;
-        let mut junction_formed = false;
-        let mut stalk_bonds = 0usize;
+        // Start from the world's state, so that consecutive calls continue one run.
+        let mut junction_formed = w.bonds().bonds().iter().any(is_junction);
+        let mut stalk_bonds = w.bonds().bonds().iter().filter(|b| !is_junction(b)).count();
         for _ in 0..max_steps {
             let step = w.step_count();
             w.step()?;
-            let p = w.body(self.pod_body()).position.to_f64();
-            let disp: f64 = (0..3).map(|k| (p[k] - start[k]) * u[k]).sum();
+            let disp = speed_mm_ms * w.time_s() * crate::units::TIME_S_TO_MS;
             let f = self.pull_force_n(w);
             record(disp, f);
             let live = w.bonds().bonds();
