@@ -157,6 +157,8 @@ impl<S: Scalar> World<'_, S> {
             h.v(w.velocity);
             h.u64(w.material as u64);
         }
+        // Bond state; hashes nothing in worlds that never used bonds.
+        self.bond_table.hash_into(&mut h);
         h.finish()
     }
 

@@ -178,6 +178,8 @@ pub enum Stage {
     Integration,
     /// Wall motion.
     WallMotion,
+    /// Bond loads and breakage.
+    Bonds,
 }
 
 /// The second party of a failed interaction.
@@ -221,6 +223,11 @@ pub enum StepError {
     },
     /// No time step was set.
     NoTimeStep,
+    /// A scheduled bond formation did not fit the bond arena.
+    BondCapacity {
+        /// Bond capacity.
+        capacity: u32,
+    },
     /// dt exceeds the stable bound (e.g. a smaller sphere was added after `set_timestep`).
     TimeStepTooLarge {
         /// dt, s.
@@ -254,6 +261,10 @@ impl fmt::Display for StepError {
                 "materials {material_a} and {material_b} touch but no pair parameters were set"
             ),
             StepError::NoTimeStep => write!(f, "no time step set; call set_timestep first"),
+            StepError::BondCapacity { capacity } => write!(
+                f,
+                "scheduled bond formation needs more than {capacity} bonds; give larger bond storage"
+            ),
             StepError::TimeStepTooLarge { dt_s, max_s } => write!(
                 f,
                 "time step {dt_s:e} s exceeds the stable bound {max_s:e} s"

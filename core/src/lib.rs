@@ -70,6 +70,7 @@
 //! - [`contact`]: one file per contact term; [`contact::history`]: tangential history;
 //! - [`body`]: bodies, spheres, clump mass properties, caller-provided [`body::Storage`];
 //! - [`wall`]: planes, cylinders, boxes;
+//! - [`bond`]: bonded-particle model (seed 001 §2.4): bond sets, storage, formation, breakage;
 //! - [`step`]: broad phase, narrow phase, body forces, integration, wall motion;
 //! - [`timestep`]: Rayleigh time; [`digest`]: state hash and dump; [`error`]: typed errors;
 //! - [`world`]: the [`world::World`] and its set-up API.
@@ -80,6 +81,7 @@
 #![deny(missing_docs)]
 
 pub mod body;
+pub mod bond;
 pub mod contact;
 pub mod digest;
 pub mod error;

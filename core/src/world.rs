@@ -121,6 +121,8 @@ pub struct World<'a, S: Scalar> {
     pub(crate) list_drift: S,
     /// Skin of the current neighbour list, mm.
     pub(crate) list_skin: S,
+    /// Bonded-particle model state ([`crate::bond`]).
+    pub(crate) bond_table: crate::bond::Bonds<'a, S>,
 }
 
 impl<'a, S: Scalar> World<'a, S> {
@@ -182,6 +184,7 @@ impl<'a, S: Scalar> World<'a, S> {
             list_valid: false,
             list_drift: S::ZERO,
             list_skin: S::ZERO,
+            bond_table: crate::bond::Bonds::empty(),
         })
     }
 

@@ -15,8 +15,9 @@
 //! path of a per-body dump of the new state (diff it against a dump of the old build to find
 //! the first body that diverged).
 
+use arachis_core::bond::{Bond, BondBreak, BondStorage};
 use arachis_core::prelude::*;
-use arachis_core::scenario::{BenchBed, ClumpSlide, MovingWallPile};
+use arachis_core::scenario::{BenchBed, ClumpSlide, MovingWallPile, PullOff};
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
@@ -40,6 +41,13 @@ const CLUMP_STEPS: u64 = 4_000;
 const BLADE_STEPS: u64 = 2_000;
 /// Moving wall: live contacts required at the digest.
 const PILE_MIN_CONTACTS: u32 = 40;
+/// Pull-off: steps before the digest (2.5 ms; the junction breaks in step 4 196, so the
+/// digest covers the break log, the surviving stalk bonds and the detached pod).
+const PULL_OFF_STEPS: u64 = 5_000;
+/// Pull-off: largest relative difference between the measured detachment force and σc·A of
+/// the junction (measured −3.7e-4). The gripper starts at full speed, so the undamped stalk
+/// rings; its force amplitude is at most v·√(k·m) ≈ 0.08 N, 2 % of 3.55 N.
+const PULL_OFF_FORCE_TOL: f64 = 0.01;
 
 /// Owned arenas for one world (the core itself never allocates).
 struct Arenas<S: Scalar> {
@@ -248,6 +256,46 @@ fn moving_wall_pile_matches_golden_digest() {
         blade_start,
         "the blade did not move"
     );
+}
+
+#[test]
+fn pull_off_matches_golden_digest() {
+    let scenario = PullOff::default();
+    let mut arenas = Arenas::<Fx>::new(scenario.storage_lengths());
+    let mut bonds = vec![Bond::<Fx>::default(); scenario.bond_capacity()];
+    let mut log = vec![BondBreak::<Fx>::default(); scenario.bond_capacity()];
+    let mut world = scenario
+        .build(
+            arenas.storage(),
+            BondStorage {
+                bonds: &mut bonds,
+                log: &mut log,
+            },
+        )
+        .unwrap();
+    let result = scenario.run(&mut world, PULL_OFF_STEPS, |_, _| {}).unwrap();
+    world.run(PULL_OFF_STEPS - world.step_count()).unwrap();
+    check_golden(
+        "pull_off",
+        "Virtual tensile test (core/src/scenario/pull_off.rs): an 8-sphere bonded pod stalk\n\
+         clamped at one end, a 3-sphere pod clump bonded to the other and pulled axially at\n\
+         0.1 m/s until the junction breaks, dt 5e-7 s.",
+        &world,
+    );
+    let predicted = scenario.predicted_axial_detachment_n();
+    println!(
+        "pull-off: detachment {:.4} N at {:.4} mm (step {:?}); criterion σc·A = {predicted:.4} N",
+        result.detachment_force_n, result.detachment_displacement_mm, result.break_step
+    );
+    assert!(result.break_step.is_some(), "the pod never came off");
+    assert!(!result.stalk_broke_first);
+    let err = (result.detachment_force_n - predicted) / predicted;
+    assert!(
+        err.abs() < PULL_OFF_FORCE_TOL,
+        "detachment off by {err:.3e}"
+    );
+    assert_eq!(world.bonds().breaks_total(), 1);
+    assert_eq!(world.bonds().bonds().len(), scenario.bond_capacity() - 1);
 }
 
 /// A short variant of the moving-wall scenario for the property tests below.

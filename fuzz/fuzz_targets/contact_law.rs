@@ -308,6 +308,7 @@ fn discriminant(e: &StepError) -> &'static str {
         StepError::UndefinedPair { .. } => "UndefinedPair",
         StepError::NoTimeStep => "NoTimeStep",
         StepError::TimeStepTooLarge { .. } => "TimeStepTooLarge",
+        StepError::BondCapacity { .. } => "BondCapacity",
     }
 }
 

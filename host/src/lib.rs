@@ -9,6 +9,7 @@ pub mod doe;
 pub mod io;
 pub mod lab;
 pub mod optimize;
+pub mod plant;
 pub mod repose;
 pub mod shapes;
 pub mod stats;

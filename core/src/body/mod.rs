@@ -8,6 +8,7 @@
 
 pub mod arena;
 pub mod clump;
+pub mod kinematic;
 pub mod sphere;
 
 pub use arena::{Storage, StorageLengths, DEFAULT_SLOTS_PER_SPHERE};

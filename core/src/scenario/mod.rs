@@ -13,6 +13,7 @@
 //! | [`BenchBed`] | `bench_bed.rs` | DESIGN §8 pour into a steel cylinder: many sphere–sphere and sphere–wall contacts |
 //! | [`ClumpSlide`] | `clump_slide.rs` | two- and three-sphere clumps sliding down a steel incline into each other and a stop wall |
 //! | [`MovingWallPile`] | `moving_wall.rs` | a small pile settled on a floor, then a plane blade moving through it at a prescribed velocity |
+//! | [`PullOff`] | `pull_off.rs` | a bonded pod stalk clamped at one end, a pod clump bonded to the other and pulled off at constant speed (bonds, breakage, kinematic bodies) |
 //!
 //! [`measure`] holds the figures reported for a bed (bed height, centre-of-mass height).
 //!
@@ -41,11 +42,13 @@ pub mod materials;
 pub mod measure;
 pub mod moving_wall;
 pub mod prng;
+pub mod pull_off;
 
 pub use bench_bed::BenchBed;
 pub use clump_slide::ClumpSlide;
 pub use moving_wall::MovingWallPile;
 pub use prng::SplitMix64;
+pub use pull_off::PullOff;
 
 use crate::error::{SetupError, StepError};
 use core::fmt;
@@ -59,6 +62,8 @@ pub enum ScenarioError {
     Step(StepError),
     /// The scenario needs at least one particle.
     NoParticles,
+    /// The bond set-up refused an input (see the inner error).
+    Bond(crate::bond::BondError),
     /// More particles than random insertion can place in the scenario's region.
     TooManyParticles {
         /// Particles requested.
@@ -83,6 +88,12 @@ impl From<SetupError> for ScenarioError {
     }
 }
 
+impl From<crate::bond::BondError> for ScenarioError {
+    fn from(e: crate::bond::BondError) -> Self {
+        ScenarioError::Bond(e)
+    }
+}
+
 impl From<StepError> for ScenarioError {
     fn from(e: StepError) -> Self {
         ScenarioError::Step(e)
@@ -95,6 +106,7 @@ impl fmt::Display for ScenarioError {
             ScenarioError::Setup(e) => write!(f, "{e}"),
             ScenarioError::Step(e) => write!(f, "while preparing the scenario: {e}"),
             ScenarioError::NoParticles => write!(f, "the number of particles must be at least 1"),
+            ScenarioError::Bond(e) => write!(f, "{e}"),
             ScenarioError::TooManyParticles { requested, max } => write!(
                 f,
                 "{requested} particles do not fit the insertion region without overlap; \

@@ -30,8 +30,12 @@ impl<S: Scalar> World<'_, S> {
             // for a very light body would shift its acceleration (fuzz finding F3): the
             // accumulator holds F_c + m·g, and subtracting the same rounded m·g that
             // body_forces added recovers the contact force F_c exactly.
-            let contact = b.force - g.scale(b.mass);
-            b.velocity += (contact.scale(b.inv_mass) + g).scale(dt);
+            // A kinematic body (inverse mass zero, `body::kinematic`) keeps its velocity:
+            // no contact force and no gravity.
+            if b.inv_mass != S::ZERO {
+                let contact = b.force - g.scale(b.mass);
+                b.velocity += (contact.scale(b.inv_mass) + g).scale(dt);
+            }
             let dx = b.velocity.scale(dt);
             b.position += dx;
             let w0 = b.angular_velocity;

@@ -5,15 +5,18 @@
 //!    (counting sort, fixed order) only when a sphere may have moved by half the skin;
 //! 3. [`narrow_phase`]: sphere–sphere and sphere–wall geometry, then the contact terms of
 //!    [`crate::pair::PairParams`]; forces and torques accumulate into the bodies;
-//! 4. [`integration`]: symplectic Euler (kick–drift), the leapfrog form of velocity Verlet,
+//! 4. [`bonds`]: bonded-particle loads, breakage and scheduled bond formation (between the
+//!    narrow phase and integration);
+//! 5. [`integration`]: symplectic Euler (kick–drift), the leapfrog form of velocity Verlet,
 //!    with rolling friction applied so it never reverses ω; clumps through their quaternion;
-//! 5. [`wall_motion`]: walls advance at their prescribed velocity.
+//! 6. [`wall_motion`]: walls advance at their prescribed velocity.
 //!
 //! In fixed point, force accumulation is integer addition, so its result does not depend on
 //! the order of contacts (DESIGN §5); the order is fixed anyway so the f64 reference is also
 //! reproducible.
 
 pub mod body_forces;
+pub mod bonds;
 pub mod broad_phase;
 pub mod integration;
 pub mod narrow_phase;
@@ -45,6 +48,7 @@ impl<S: Scalar> World<'_, S> {
         self.apply_body_forces()?;
         self.ensure_neighbour_list()?;
         self.contacts()?;
+        self.bond_forces()?;
         self.integrate()?;
         self.move_walls()?;
         self.time += self.dt;

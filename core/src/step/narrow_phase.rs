@@ -38,6 +38,8 @@ struct Partner<S> {
 struct Ctx<'w, S: Scalar> {
     bodies: &'w mut [Body<S>],
     dt: S,
+    /// Live bonds, sorted by sphere pair: bonded pairs get no contact force.
+    bonded: &'w [crate::bond::Bond<S>],
 }
 
 /// A contact overflowed (the caller names the parties).
@@ -167,6 +169,7 @@ impl<S: Scalar> World<'_, S> {
             ctx: Ctx {
                 bodies: &mut self.bodies[..],
                 dt: self.dt,
+                bonded: &self.bond_table.bonds[..self.bond_table.n as usize],
             },
             spheres: &self.spheres[..self.n_spheres as usize],
             slots,
@@ -363,6 +366,12 @@ fn sphere_pair<S: Scalar>(
         return Err(overflow());
     }
     if d2 >= rs * rs {
+        *state = ContactState::default();
+        return Ok(false);
+    }
+    if crate::bond::arena::is_bonded(ctx.bonded, i as u32, j as u32) {
+        // A bond carries the load; the pair meets the contact law, with fresh history, only
+        // once the bond breaks.
         *state = ContactState::default();
         return Ok(false);
     }

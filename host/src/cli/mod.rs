@@ -7,6 +7,7 @@ pub mod doe;
 pub mod lab;
 pub mod lab_repose;
 pub mod pour;
+pub mod pulloff;
 pub mod study;
 
 use clap::{Parser, Subcommand};
@@ -31,6 +32,8 @@ pub enum Command {
     Doe(doe::Args),
     /// Study files: validate one before any simulation runs.
     Study(study::Args),
+    /// Virtual tensile test: pull a bonded pod off its stalk, print the detachment force.
+    Pulloff(pulloff::Args),
 }
 
 impl Cli {
@@ -41,6 +44,7 @@ impl Cli {
             Command::Lab(args) => lab::run(args),
             Command::Doe(args) => doe::run(args),
             Command::Study(args) => study::run(args),
+            Command::Pulloff(args) => pulloff::run(args),
         }
     }
 }

@@ -1,0 +1,67 @@
+//! [`PlantError`]: why a topology cannot become a plant.
+
+use thiserror::Error;
+
+/// A bad plant topology.
+#[derive(Debug, Error, PartialEq)]
+pub enum PlantError {
+    /// The TOML text does not parse or has unknown keys.
+    #[error("cannot read the plant topology: {0}")]
+    Parse(String),
+    /// A part names a parent that does not exist.
+    #[error("part `{part}` is attached to unknown part `{parent}`")]
+    UnknownPart {
+        /// The part.
+        part: String,
+        /// The missing parent.
+        parent: String,
+    },
+    /// Two parts share a name.
+    #[error("part name `{0}` is used twice")]
+    DuplicateName(String),
+    /// No main stem, or more than one.
+    #[error("a plant needs exactly one main_stem part, found {0}")]
+    MainStemCount(usize),
+    /// A part of this kind cannot hang on that parent kind.
+    #[error("part `{part}` ({kind}) cannot be attached to `{parent}` ({parent_kind})")]
+    BadParent {
+        /// The part.
+        part: String,
+        /// Its kind.
+        kind: &'static str,
+        /// The parent.
+        parent: String,
+        /// The parent's kind.
+        parent_kind: &'static str,
+    },
+    /// A part whose chain of parents never reaches the main stem (a cycle).
+    #[error("part `{0}` is not connected to the main stem")]
+    Unconnected(String),
+    /// A pod stalk carries no pod.
+    #[error("pod stalk `{0}` is dangling: no pod is attached to it")]
+    DanglingStalk(String),
+    /// A bond set the plant needs is not defined.
+    #[error("bond set `{0}` is needed but not defined in [bonds]")]
+    MissingBondSet(&'static str),
+    /// A bond radius ≤ 0.
+    #[error("bond set `{set}`: bond radius must be > 0, got {radius_m} m")]
+    NonPositiveBondRadius {
+        /// The set.
+        set: String,
+        /// The radius, m.
+        radius_m: f64,
+    },
+    /// A number out of range.
+    #[error("{what} must be {rule}, got {value}")]
+    BadValue {
+        /// What.
+        what: String,
+        /// The rule ("> 0", "in [0, 1]").
+        rule: &'static str,
+        /// The value.
+        value: f64,
+    },
+    /// The core refused the plant (capacity, ranges).
+    #[error("the simulation core refused the plant: {0}")]
+    Core(String),
+}

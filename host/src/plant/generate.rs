@@ -1,0 +1,326 @@
+//! From a checked [`Topology`] to spheres, bodies and named bonds ([`PlantModel`]), and from
+//! there into a core world ([`PlantModel::load_into`]).
+//!
+//! Stems, laterals, stalks and leaves are straight chains of n = max(2, round(L/D)) touching
+//! spheres of radius D/2 (one body each), grown from the attachment point: the child's first
+//! sphere touches the parent's sphere nearest to the point `at·L` along the parent and is
+//! bonded to it. Chain neighbours are bonded with the part's own set (`stem`, `stalk`,
+//! `leaf`), attachments with `stem` (lateral), `stalk_stem`, `stem_leaf` or `pod_stalk`. A pod
+//! is one clump of three spheres of radius H/2 spanning the pod length, continuing its
+//! stalk's direction. Neighbours are placed with a 1 µm gap so nothing overlaps at set-up.
+
+use std::collections::BTreeMap;
+
+use arachis_core::bond::{BondSetId, BondSetSpec};
+use arachis_core::prelude::*;
+
+use super::error::PlantError;
+use super::topology::{Kind, Topology};
+
+/// Gap between neighbouring spheres at set-up, mm.
+const GAP_MM: f64 = 0.001;
+/// Spheres per pod clump.
+const POD_SPHERES: usize = 3;
+/// Millimetres per metre.
+const MM_PER_M: f64 = 1000.0;
+
+/// One sphere of the plant (SI).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlantSphere {
+    /// Centre, m.
+    pub centre_m: [f64; 3],
+    /// Radius, m.
+    pub radius_m: f64,
+    /// Index of its body in [`PlantModel::bodies`].
+    pub body: usize,
+}
+
+/// One rigid body: a chain sphere or a pod clump.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlantBody {
+    /// Name of the part it belongs to.
+    pub part: String,
+    /// Kind of that part.
+    pub kind: Kind,
+    /// Its spheres (indices into [`PlantModel::spheres`]).
+    pub spheres: Vec<usize>,
+}
+
+/// One bond between two spheres, with the name of its set.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlantBond {
+    /// First sphere.
+    pub a: usize,
+    /// Second sphere.
+    pub b: usize,
+    /// Bond-set name.
+    pub set: &'static str,
+}
+
+/// A generated plant.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlantModel {
+    /// Spheres, body by body.
+    pub spheres: Vec<PlantSphere>,
+    /// Bodies in generation order (parents before children); body 0 is the stem root.
+    pub bodies: Vec<PlantBody>,
+    /// Bonds.
+    pub bonds: Vec<PlantBond>,
+    /// Bond sets used, by name (from the topology).
+    pub sets: BTreeMap<&'static str, BondSetSpec>,
+}
+
+/// Where a placed part lies: its sphere indices and unit direction.
+struct Placed {
+    spheres: Vec<usize>,
+    dir: [f64; 3],
+}
+
+fn unit(v: [f64; 3]) -> [f64; 3] {
+    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    v.map(|x| x / n)
+}
+
+fn along(p: [f64; 3], u: [f64; 3], s: f64) -> [f64; 3] {
+    [p[0] + u[0] * s, p[1] + u[1] * s, p[2] + u[2] * s]
+}
+
+/// Generate the plant of `t` (checked again here).
+pub fn generate(t: &Topology) -> Result<PlantModel, PlantError> {
+    t.check()?;
+    let d = &t.dimensions;
+    let mut m = PlantModel {
+        spheres: Vec::new(),
+        bodies: Vec::new(),
+        bonds: Vec::new(),
+        sets: BTreeMap::new(),
+    };
+    let mut placed: BTreeMap<&str, Placed> = BTreeMap::new();
+    let mut remaining: Vec<&super::topology::Part> = t.parts.iter().collect();
+    while !remaining.is_empty() {
+        let before = remaining.len();
+        let mut k = 0;
+        while k < remaining.len() {
+            let p = remaining[k];
+            let parent = p.parent.as_deref().and_then(|n| placed.get(n));
+            if p.kind != Kind::MainStem && parent.is_none() {
+                k += 1;
+                continue;
+            }
+            let u = unit(p.direction);
+            let (spheres, set_attach) = match p.kind {
+                Kind::Pod => {
+                    let parent = parent.expect("checked above");
+                    let end = *parent.spheres.last().expect("chains have ≥ 2 spheres");
+                    let e = m.spheres[end].clone();
+                    let dir = parent.dir;
+                    let rp = d.pod_thickness_mm / 2.0;
+                    let spacing = (d.pod_length_mm - 2.0 * rp).max(0.0) / (POD_SPHERES - 1) as f64;
+                    let start = e.radius_m * MM_PER_M + GAP_MM + rp;
+                    let body = m.bodies.len();
+                    let first = m.spheres.len();
+                    for i in 0..POD_SPHERES {
+                        let c = along(
+                            e.centre_m.map(|x| x * MM_PER_M),
+                            dir,
+                            start + i as f64 * spacing,
+                        );
+                        m.spheres.push(PlantSphere {
+                            centre_m: c.map(|x| x / MM_PER_M),
+                            radius_m: rp / MM_PER_M,
+                            body,
+                        });
+                    }
+                    m.bodies.push(PlantBody {
+                        part: p.name.clone(),
+                        kind: p.kind,
+                        spheres: (first..first + POD_SPHERES).collect(),
+                    });
+                    m.bonds.push(PlantBond {
+                        a: end,
+                        b: first,
+                        set: "pod_stalk",
+                    });
+                    placed.insert(
+                        &p.name,
+                        Placed {
+                            spheres: (first..first + POD_SPHERES).collect(),
+                            dir,
+                        },
+                    );
+                    remaining.remove(k);
+                    continue;
+                }
+                Kind::MainStem => (
+                    chain(d.stem_length_mm, d.stem_diameter_mm, p.length_mm),
+                    None,
+                ),
+                Kind::LateralStem => (
+                    chain(d.lateral_length_mm, d.stem_diameter_mm, p.length_mm),
+                    Some("stem"),
+                ),
+                Kind::PodStalk => (
+                    chain(d.stalk_length_mm, d.stalk_diameter_mm, p.length_mm),
+                    Some("stalk_stem"),
+                ),
+                Kind::Leaf => (
+                    chain(d.leaf_length_mm, d.leaf_diameter_mm, p.length_mm),
+                    Some("stem_leaf"),
+                ),
+            };
+            let (n, r_mm) = spheres;
+            let internal = match p.kind {
+                Kind::MainStem | Kind::LateralStem => "stem",
+                Kind::PodStalk => "stalk",
+                _ => "leaf",
+            };
+            // Start point and the parent sphere to bond to.
+            let (start, anchor) = match parent {
+                None => ([0.0; 3], None),
+                Some(par) => {
+                    let idx =
+                        par.spheres[((p.at * (par.spheres.len() - 1) as f64).round()) as usize];
+                    let s = &m.spheres[idx];
+                    let c = s.centre_m.map(|x| x * MM_PER_M);
+                    (
+                        along(c, u, s.radius_m * MM_PER_M + GAP_MM + r_mm),
+                        Some(idx),
+                    )
+                }
+            };
+            let body0 = m.bodies.len();
+            let first = m.spheres.len();
+            for i in 0..n {
+                let c = along(start, u, i as f64 * (2.0 * r_mm + GAP_MM));
+                m.spheres.push(PlantSphere {
+                    centre_m: c.map(|x| x / MM_PER_M),
+                    radius_m: r_mm / MM_PER_M,
+                    body: body0 + i,
+                });
+                m.bodies.push(PlantBody {
+                    part: p.name.clone(),
+                    kind: p.kind,
+                    spheres: vec![first + i],
+                });
+                if i > 0 {
+                    m.bonds.push(PlantBond {
+                        a: first + i - 1,
+                        b: first + i,
+                        set: internal,
+                    });
+                }
+            }
+            if let (Some(a), Some(set)) = (anchor, set_attach) {
+                m.bonds.push(PlantBond { a, b: first, set });
+            }
+            placed.insert(
+                &p.name,
+                Placed {
+                    spheres: (first..first + n).collect(),
+                    dir: u,
+                },
+            );
+            remaining.remove(k);
+        }
+        if remaining.len() == before {
+            return Err(PlantError::Unconnected(remaining[0].name.clone()));
+        }
+    }
+    for b in &m.bonds {
+        if !m.sets.contains_key(b.set) {
+            let s = t
+                .bonds
+                .get(b.set)
+                .ok_or(PlantError::MissingBondSet(b.set))?;
+            m.sets.insert(
+                b.set,
+                BondSetSpec {
+                    tag: 0,
+                    normal_stiffness_n_m3: s.kn_n_m3,
+                    tangential_stiffness_n_m3: s.kt_n_m3,
+                    normal_strength_pa: s.sigma_c_pa,
+                    tangential_strength_pa: s.tau_c_pa,
+                    radius_m: s.radius_m,
+                },
+            );
+        }
+    }
+    // Tags in name order, so the host can map break records back to set names.
+    for (tag, spec) in m.sets.values_mut().enumerate() {
+        spec.tag = tag as u16;
+    }
+    Ok(m)
+}
+
+/// Sphere count and radius (mm) of a chain of length `l` and diameter `dia`.
+fn chain(l: f64, dia: f64, over: Option<f64>) -> (usize, f64) {
+    let l = over.unwrap_or(l);
+    (((l / dia).round() as usize).max(2), dia / 2.0)
+}
+
+impl PlantModel {
+    /// Number of bonds of the named set.
+    pub fn bond_count(&self, set: &str) -> usize {
+        self.bonds.iter().filter(|b| b.set == set).count()
+    }
+
+    /// Bond-set name of a tag (as stored in break records).
+    pub fn set_name(&self, tag: u16) -> Option<&'static str> {
+        self.sets.keys().nth(tag as usize).copied()
+    }
+
+    /// Add the plant to `world` (stems, stalks and leaves of `plant_material`, pods of
+    /// `pod_material`): spheres, pod clumps, bond sets and bonds. The world needs bond storage
+    /// for [`PlantModel::bonds`]. Returns the body id of the stem root (the caller may clamp
+    /// it with `set_body_kinematic`).
+    pub fn load_into<S: Scalar>(
+        &self,
+        world: &mut World<'_, S>,
+        plant_material: MaterialId,
+        pod_material: MaterialId,
+    ) -> Result<BodyId, PlantError> {
+        let core = |e: &dyn std::fmt::Display| PlantError::Core(e.to_string());
+        let mut ids: BTreeMap<&str, BondSetId> = BTreeMap::new();
+        for (name, spec) in &self.sets {
+            ids.insert(name, world.add_bond_set(spec).map_err(|e| core(&e))?);
+        }
+        let first_sphere = world.spheres().len();
+        let mut root = None;
+        for b in &self.bodies {
+            let id = if b.kind == Kind::Pod {
+                let spheres: Vec<ClumpSphere> = b
+                    .spheres
+                    .iter()
+                    .map(|&i| ClumpSphere {
+                        center_m: self.spheres[i].centre_m,
+                        radius_m: self.spheres[i].radius_m,
+                        material: pod_material,
+                    })
+                    .collect();
+                world
+                    .add_clump(&ClumpSpec {
+                        spheres: &spheres,
+                        velocity_m_s: [0.0; 3],
+                        angular_velocity_rad_s: [0.0; 3],
+                    })
+                    .map_err(|e| core(&e))?
+            } else {
+                let s = &self.spheres[b.spheres[0]];
+                world
+                    .add_sphere(SphereSpec::at_rest(plant_material, s.radius_m, s.centre_m))
+                    .map_err(|e| core(&e))?
+            };
+            root.get_or_insert(id);
+        }
+        for b in &self.bonds {
+            world
+                .add_bond(
+                    (first_sphere + b.a) as u32,
+                    (first_sphere + b.b) as u32,
+                    ids[b.set],
+                )
+                .map_err(|e| core(&e))?;
+        }
+        root.ok_or(PlantError::MainStemCount(0))
+    }
+}

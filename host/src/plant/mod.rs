@@ -1,0 +1,23 @@
+//! Plant generator (issue 6, part 2): a bonded-sphere peanut plant from a topology file.
+//!
+//! A topology (TOML, [`topology`]) lists named parts — main stem, lateral stems, pod stalks,
+//! pods and simplified leaves — each attached to a parent part at a fraction of its length,
+//! with a direction, plus the bond sets by name (`stem`, `stalk`, `stalk_stem`, `pod_stalk`,
+//! `stem_leaf`, `leaf`). Default dimensions are seed 001 Table 1 (stem 763.81 × 6.74 mm,
+//! pod stalk 108.26 × 1.93 mm, pod 34.27 × 18.29 × 15.76 mm). [`generate`] turns it into
+//! spheres, bodies and bonds ([`generate::PlantModel`]) and loads them into a core world.
+//!
+//! Bad topologies are clear errors ([`error::PlantError`]): an unknown part or kind, a pod
+//! stalk with no pod (dangling), a bond radius ≤ 0, a missing bond set, a pod not on a stalk.
+//!
+//! Simplifications (stated, not hidden): stems, stalks and leaves are straight chains of
+//! touching spheres of the part's radius; a pod is a three-sphere clump of radius H/2 over the
+//! pod length (not yet the measured shapes of `crate::shapes`); a leaf is a short chain.
+
+pub mod error;
+pub mod generate;
+pub mod topology;
+
+pub use error::PlantError;
+pub use generate::{generate, PlantModel};
+pub use topology::Topology;
