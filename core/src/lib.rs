@@ -82,6 +82,7 @@
 pub mod body;
 pub mod contact;
 pub mod digest;
+pub mod effects;
 pub mod error;
 pub mod material;
 pub mod num;

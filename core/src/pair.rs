@@ -8,6 +8,7 @@
 //! assert!(p.validate().is_ok());
 //! ```
 
+use crate::contact::{CohesionSjkr, ViscoelasticNormal};
 use crate::contact::{
     ContactForce, ContactKinematics, ContactState, ContactTerm, CoulombLimit, HertzNormal,
     MindlinTangential, NormalDamping, RollingCdt, TangentialDamping,
@@ -114,6 +115,10 @@ pub struct PairParams<S> {
     pub coulomb: CoulombLimit<S>,
     /// CDT rolling friction.
     pub rolling: RollingCdt<S>,
+    /// Optional effect: viscoelastic normal damping (off by default; [`crate::effects`]).
+    pub viscoelastic: ViscoelasticNormal<S>,
+    /// Optional effect: SJKR cohesion (off by default; [`crate::effects`]).
+    pub cohesion: CohesionSjkr<S>,
 }
 
 impl<S: Scalar> PairParams<S> {
@@ -132,6 +137,8 @@ impl<S: Scalar> PairParams<S> {
             tangential_damping: TangentialDamping::new(spec.restitution, g_star),
             coulomb: CoulombLimit::new(spec.friction),
             rolling: RollingCdt::new(spec.rolling_friction),
+            viscoelastic: ViscoelasticNormal::default(),
+            cohesion: CohesionSjkr::default(),
         };
         p.hertz.on &= t.hertz_normal;
         p.normal_damping.on &= t.normal_damping;
@@ -158,11 +165,13 @@ impl<S: Scalar> PairParams<S> {
         let mut out = ContactForce::default();
         self.hertz.apply(k, state, &mut out);
         self.normal_damping.apply(k, state, &mut out);
+        self.viscoelastic.apply(k, state, &mut out);
         crate::contact::clip_normal(&mut out);
         self.tangential.apply(k, state, &mut out);
         self.tangential_damping.apply(k, state, &mut out);
         self.coulomb.apply(k, state, &mut out);
         self.rolling.apply(k, state, &mut out);
+        self.cohesion.apply(k, state, &mut out);
         out
     }
 }

@@ -115,6 +115,8 @@ pub struct World<'a, S: Scalar> {
     pub(crate) steps: u64,
     pub(crate) max_radius: S,
     pub(crate) min_rayleigh_s: f64,
+    /// Optional air drag (off by default; [`crate::effects`]).
+    pub(crate) air_drag: crate::step::air_drag::AirDrag<S>,
 }
 
 impl<'a, S: Scalar> World<'a, S> {
@@ -173,6 +175,7 @@ impl<'a, S: Scalar> World<'a, S> {
             steps: 0,
             max_radius: S::ZERO,
             min_rayleigh_s: f64::INFINITY,
+            air_drag: crate::step::air_drag::AirDrag::default(),
         })
     }
 

@@ -26,6 +26,7 @@
 //! towards j; relative velocity is v_j − v_i at the contact point, so vn = v_rel·n > 0 when
 //! separating. Forces in [`ContactForce`] act on j; i receives the opposite.
 
+pub mod cohesion_sjkr;
 pub mod coulomb;
 pub mod hertz_normal;
 pub mod history;
@@ -33,7 +34,9 @@ pub mod mindlin_tangential;
 pub mod normal_damping;
 pub mod rolling_cdt;
 pub mod tangential_damping;
+pub mod viscoelastic_normal;
 
+pub use cohesion_sjkr::CohesionSjkr;
 pub use coulomb::CoulombLimit;
 pub use hertz_normal::HertzNormal;
 pub use history::{ContactSlot, ContactState, WALL_PARTNER_FLAG};
@@ -41,6 +44,7 @@ pub use mindlin_tangential::MindlinTangential;
 pub use normal_damping::NormalDamping;
 pub use rolling_cdt::RollingCdt;
 pub use tangential_damping::TangentialDamping;
+pub use viscoelastic_normal::ViscoelasticNormal;
 
 use crate::num::{Scalar, Vec3};
 

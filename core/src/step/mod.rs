@@ -12,6 +12,7 @@
 //! the order of contacts (DESIGN §5); the order is fixed anyway so the f64 reference is also
 //! reproducible.
 
+pub mod air_drag;
 pub mod body_forces;
 pub mod broad_phase;
 pub mod integration;
@@ -41,6 +42,9 @@ impl<S: Scalar> World<'_, S> {
             });
         }
         self.apply_body_forces()?;
+        if self.air_drag.on {
+            self.apply_air_drag()?;
+        }
         let grid = self.bin_spheres();
         self.sphere_contacts(grid)?;
         self.wall_contacts()?;
