@@ -32,10 +32,10 @@ pub const GRAVITY_M_S2: f64 = 9.806_65;
 /// resting overlap, only how fast the sphere gets there).
 pub const PRESS_SETTLING_RESTITUTION: f64 = 0.2;
 /// Time steps per Hertz contact duration in the rebound run.
-const REBOUND_STEPS_PER_CONTACT: f64 = 400.0;
+const REBOUND_STEPS_PER_CONTACT: f64 = 100.0;
 /// Time steps per small-oscillation period in the press run, and periods simulated.
-const PRESS_STEPS_PER_PERIOD: f64 = 60.0;
-const PRESS_PERIODS: f64 = 40.0;
+const PRESS_STEPS_PER_PERIOD: f64 = 30.0;
+const PRESS_PERIODS: f64 = 25.0;
 /// Time step of the fall run, s (below the Rayleigh bound of the pod sphere, 7.5e-5 s).
 const FALL_DT_S: f64 = 5.0e-5;
 /// Step limit guarding every run.

@@ -23,9 +23,10 @@ use super::score::scale_rows;
 use super::sensitivity::{jacobian, predict};
 
 /// Gauss–Newton iteration limit.
-pub const MAX_ITERATIONS: u64 = 25;
-/// Convergence tolerance on the change of ‖r‖.
-const COST_TOLERANCE: f64 = 1e-7;
+pub const MAX_ITERATIONS: u64 = 15;
+/// Convergence tolerance on the change of ‖r‖ (standardised units: 1e-4 is far below the
+/// sampling noise of ‖r‖, ≈ 0.7).
+const COST_TOLERANCE: f64 = 1e-4;
 /// A base parameter is fitted only when a change by its catalogue scale moves the
 /// standardised residuals by at least this much (otherwise the data cannot determine it and
 /// JᵀJ would be singular).

@@ -5,6 +5,7 @@
 
 use std::path::PathBuf;
 
+use arachis::diagnose::fit::compare_with;
 use arachis::diagnose::params::effect;
 use arachis::diagnose::residuals::Dataset;
 use arachis::diagnose::score::{rank, Ranking};
@@ -72,4 +73,62 @@ impl Case {
     pub fn ranking(&self, seed: u64) -> Ranking {
         rank(&self.data(seed), &self.lin).unwrap()
     }
+}
+
+/// Replicates per condition in the fit studies.
+pub const REPLICATES: usize = 12;
+
+pub fn fit_case(kind: &str, name: &str, value: f64, seeds: u64) {
+    let mut study = template();
+    study.experiment.retain(|e| e.kind.name() == kind);
+    for p in study.experiment[0].point.iter_mut() {
+        p.replicates = Some(REPLICATES);
+    }
+    let sd = study.experiment[0].noise_sd.unwrap();
+    let c = case_for(study, Some((name, value)));
+    let info = effect(name).unwrap();
+    let (mut in_band, mut covered) = (0, 0);
+    let (mut sum_ratio, mut sum_est) = (0.0, 0.0);
+    for seed in 0..seeds {
+        let data = c.data(seed);
+        let cmp = compare_with(&data, &c.study.calibration, info, false).unwrap();
+        let f = &cmp.with;
+        let (mut ss, mut n) = (0.0, 0);
+        for (o, y) in data.obs.iter().zip(&f.predictions) {
+            for v in &o.values {
+                ss += (v - y).powi(2);
+                n += 1;
+            }
+        }
+        let ratio = (ss / n as f64).sqrt() / sd;
+        let k = f.free.iter().position(|p| p.name == name).unwrap();
+        let (est, se) = (info.get(&f.params), f.std_errors[k]);
+        if (0.8..=1.3).contains(&ratio) {
+            in_band += 1;
+        }
+        if (est - value).abs() <= 2.0 * se {
+            covered += 1;
+        }
+        sum_ratio += ratio;
+        sum_est += est;
+        if seed == 0 {
+            println!(
+                "{name} seed 0: fitted {} ; {name} = {est:e} ± {se:e}, RMS/noise {ratio:.3}, \
+                 before (base refit) SSE {:.1}, after {:.1}, LR p {:.2e}",
+                f.free.iter().map(|p| p.name).collect::<Vec<_>>().join(", "),
+                cmp.without.sse,
+                f.sse,
+                cmp.lr_p
+            );
+        }
+    }
+    let s = seeds as f64;
+    println!(
+        "hidden {name}={value:e} on {kind}: RMS/noise in [0.8, 1.3] {in_band}/{seeds} (mean {:.3}), \
+         within 2 SE {covered}/{seeds}, mean estimate {:e}",
+        sum_ratio / s,
+        sum_est / s
+    );
+    assert!(in_band as f64 >= 0.9 * s);
+    assert!(covered as f64 >= 0.85 * s);
 }
