@@ -3,11 +3,15 @@
 //! Every subcommand returns `anyhow::Result`; `main` prints the error chain and exits with
 //! status 2, so bad input is always a clear message and never a panic.
 
+pub mod compare;
+pub mod diagnose;
 pub mod doe;
+pub mod fit;
 pub mod lab;
 pub mod lab_repose;
 pub mod pour;
 pub mod study;
+pub mod synth;
 
 use clap::{Parser, Subcommand};
 
@@ -31,6 +35,14 @@ pub enum Command {
     Doe(doe::Args),
     /// Study files: validate one before any simulation runs.
     Study(study::Args),
+    /// Diagnosis: simulate a study's experiments and test the misfit per experiment.
+    Compare(compare::Args),
+    /// Diagnosis: rank the optional effects that could explain the misfit.
+    Diagnose(diagnose::Args),
+    /// Diagnosis: recalibrate with an effect on; nested tests, AIC/BIC, held-out error.
+    Fit(fit::Args),
+    /// Diagnosis: write synthetic measurements with a hidden effect.
+    Synth(synth::Args),
 }
 
 impl Cli {
@@ -41,6 +53,10 @@ impl Cli {
             Command::Lab(args) => lab::run(args),
             Command::Doe(args) => doe::run(args),
             Command::Study(args) => study::run(args),
+            Command::Compare(args) => compare::run(args),
+            Command::Diagnose(args) => diagnose::run(args),
+            Command::Fit(args) => fit::run(args),
+            Command::Synth(args) => synth::run(args),
         }
     }
 }

@@ -7,13 +7,16 @@
 //! [`experiment`] (the cheap core simulations), [`study`] (the study file),
 //! [`residuals`] (standardised residuals and lack of fit), [`sensitivity`] (finite-difference
 //! sensitivities), [`score`] (the ranking score test), [`fit`] (recalibration with an effect),
-//! [`synth`] (synthetic measurements), [`plot`] (SVG plots).
+//! [`synth`] (synthetic measurements), [`plot`] (SVG plots), [`separate`] (which measurement
+//! would tell two effects apart).
 
 pub mod experiment;
 pub mod fit;
 pub mod params;
+pub mod plot;
 pub mod residuals;
 pub mod score;
 pub mod sensitivity;
+pub mod separate;
 pub mod study;
 pub mod synth;
