@@ -63,6 +63,31 @@ fn loop_finds_and_fits_hidden_drag() {
 }
 
 #[test]
+fn tutorial_measurements_regenerate_bit_for_bit() {
+    // docs/diagnosis-tutorial.md step 1: the committed file is what synth writes.
+    let dir = tempfile::tempdir().unwrap();
+    let m = dir.path().join("m.toml");
+    ok(&arachis(&[
+        "synth",
+        TEMPLATE,
+        "--hidden",
+        "viscoelastic=1.3e-5",
+        "--seed",
+        "7",
+        "--out",
+        m.to_str().unwrap(),
+    ]));
+    let committed = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../testdata/diagnosis-tutorial/measured.toml"
+    );
+    assert_eq!(
+        std::fs::read(&m).unwrap(),
+        std::fs::read(committed).unwrap()
+    );
+}
+
+#[test]
 fn one_condition_study_is_not_identifiable() {
     let dir = tempfile::tempdir().unwrap();
     let t = dir.path().join("t.toml");
