@@ -59,6 +59,22 @@ fn no_hidden_effect_rarely_claims_one() {
     assert!(claims as f64 <= 0.1 * SEEDS as f64);
 }
 
+#[test]
+fn miscalibrated_base_without_hidden_effect_rarely_claims_one() {
+    // The study's calibration (e 0.5, E 8.43 MPa) is off from the truth (e 0.47, E 9.3 MPa)
+    // by many standard errors; the projection must absorb that, not blame an effect.
+    let study = template();
+    let mut truth = study.calibration;
+    truth.restitution = 0.47;
+    truth.youngs_modulus_pa = 9.3e6;
+    let c = case_with_truth(study, truth, None);
+    let claims = (0..SEEDS).filter(|&s| c.ranking(s).any_claimed()).count();
+    println!(
+        "miscalibrated base, no hidden effect: a missing effect claimed in {claims}/{SEEDS} seeds"
+    );
+    assert!(claims as f64 <= 0.1 * SEEDS as f64);
+}
+
 /// Hidden values: each is ≥ 3σ at its most sensitive condition (asserted above). Measured
 /// with these values (50 seeds): viscoelastic 98 %, cohesion 96 %, drag 100 % ranked first;
 /// 3/50 false claims with no hidden effect. Viscoelastic damping needs 6σ, not 3σ: most of

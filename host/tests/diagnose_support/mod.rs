@@ -34,12 +34,25 @@ pub struct Case {
 }
 
 pub fn case_for(study: Diagnosis, hidden: Option<(&str, f64)>) -> Case {
+    let truth_base = study.calibration;
+    case_with_truth(study, truth_base, hidden)
+}
+
+/// Like [`case_for`], but the truth's base parameters are `truth_base` while the study keeps
+/// its (then wrong) calibration.
+pub fn case_with_truth(
+    study: Diagnosis,
+    truth_base: arachis::diagnose::params::ModelParams,
+    hidden: Option<(&str, f64)>,
+) -> Case {
     let h: Vec<_> = hidden
         .iter()
         .map(|(n, v)| (effect(n).unwrap(), *v))
         .collect();
-    let (_, truth) = truths(&study, &h).unwrap();
-    let (_, plain) = truths(&study, &[]).unwrap();
+    let mut truth_study = study.clone();
+    truth_study.calibration = truth_base;
+    let (_, truth) = truths(&truth_study, &h).unwrap();
+    let (_, plain) = truths(&truth_study, &[]).unwrap();
     let mut size = 0.0f64;
     for (ei, e) in study.experiment.iter().enumerate() {
         let sd = e.noise_sd.unwrap();
