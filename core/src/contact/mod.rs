@@ -12,6 +12,12 @@
 //! | tangential | [`TangentialDamping`] | `tangential_damping.rs` | Ft_d = −2√(5/6)β√(St m*)·vt (eq. 6) |
 //! | tangential | [`CoulombLimit`] | `coulomb.rs` | \|Ft\| ≤ μs·Fn, history rescaled |
 //! | rolling | [`RollingCdt`] | `rolling_cdt.rs` | T = −μr·Fn·Ri·ω̂i (eq. 7, EDEM CDT) |
+//! | normal (optional) | [`ViscoelasticNormal`] | `viscoelastic_normal.rs` | Fn_v = −(4/3)E*·A·a·vn (Brilliantov 1996), before the clip |
+//! | cohesion (optional) | [`CohesionSjkr`] | `cohesion_sjkr.rs` | Fc = −k·π·2R*α (SJKR), last, may attract |
+//!
+//! The optional terms are off by default and switched per pair with
+//! [`crate::world::World::set_pair_effects`]; [`crate::effects`] lists them (with air drag, a
+//! body force) and shows, with a worked example, how to add an effect of your own.
 //!
 //! The terms run in that order, so a later effect (cohesion, another rolling law, bonds) is a
 //! new struct added to the pair table at the right stage, without touching these.
