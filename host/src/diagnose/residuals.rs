@@ -164,3 +164,53 @@ pub fn lack_of_fit(data: &Dataset, pred: &[f64]) -> Result<Vec<LackOfFit>> {
     }
     Ok(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnose::params::ModelParams;
+    use crate::diagnose::study::{Experiment, Point};
+
+    #[test]
+    fn pure_error_is_pooled_and_residuals_standardised() {
+        // Points (1, 3) and (2, 4, 6): SS = 2 + 8 = 10 on 1 + 2 df, s = √(10/3).
+        let d = Diagnosis {
+            name: String::new(),
+            calibration: ModelParams {
+                restitution: 0.5,
+                youngs_modulus_pa: 8.43e6,
+                viscoelastic_time_s: 0.0,
+                cohesion_j_m3: 0.0,
+                drag_coefficient: 0.0,
+            },
+            experiment: vec![Experiment {
+                kind: ExperimentKind::Fall,
+                noise_sd: None,
+                point: vec![
+                    Point {
+                        condition: 0.5,
+                        values: vec![1.0, 3.0],
+                        replicates: None,
+                    },
+                    Point {
+                        condition: 1.0,
+                        values: vec![2.0, 4.0, 6.0],
+                        replicates: None,
+                    },
+                ],
+            }],
+        };
+        let data = Dataset::new(&d).unwrap();
+        let s = (10.0f64 / 3.0).sqrt();
+        assert!((data.pure_error[0].sd - s).abs() < 1e-12);
+        assert_eq!(data.pure_error[0].df, 3);
+        let r = data.standardised(&[0.0, 4.0]);
+        assert!((r[0] - 2.0 / (s / 2f64.sqrt())).abs() < 1e-12);
+        assert_eq!(r[1], 0.0);
+        // F = (r₀² + 0)/2 on (2, 3) df.
+        let lof = lack_of_fit(&data, &[0.0, 4.0]).unwrap();
+        assert!((lof[0].chi2 - r[0] * r[0]).abs() < 1e-12);
+        let f = FisherSnedecor::new(2.0, 3.0).unwrap();
+        assert!((lof[0].p_value - (1.0 - f.cdf(r[0] * r[0] / 2.0))).abs() < 1e-12);
+    }
+}

@@ -205,3 +205,77 @@ pub fn column_basis(a: &DMatrix<f64>) -> DMatrix<f64> {
         .collect();
     DMatrix::from_fn(a.nrows(), keep.len(), |i, j| u[(i, keep[j])])
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnose::experiment::ExperimentKind;
+    use crate::diagnose::params::{base, effect};
+    use crate::diagnose::residuals::{Obs, PureError};
+
+    /// Three conditions with SE 1, measured means `m`, predictions 0.
+    fn setup(m: [f64; 3], s_visco: [f64; 3], s_drag: [f64; 3]) -> (Dataset, Linearisation) {
+        let obs = (0..3)
+            .map(|i| Obs {
+                experiment: 0,
+                kind: ExperimentKind::Rebound,
+                condition: 0.1 * (i + 1) as f64,
+                values: vec![m[i]],
+                mean: m[i],
+                se_mean: 1.0,
+            })
+            .collect();
+        let data = Dataset {
+            obs,
+            pure_error: vec![PureError { sd: 1.0, df: 10 }],
+        };
+        let e = base().next().unwrap();
+        let lin = Linearisation {
+            predictions: vec![0.0; 3],
+            calibrated: vec![e],
+            // The calibrated parameter shifts every condition alike: it absorbs the mean.
+            calibrated_jacobian: DMatrix::from_element(3, 1, 1.0),
+            candidates: vec![effect("viscoelastic").unwrap(), effect("drag").unwrap()],
+            candidate_jacobian: DMatrix::from_fn(3, 2, |i, j| [s_visco, s_drag][j][i]),
+        };
+        (data, lin)
+    }
+
+    #[test]
+    fn score_is_projected_and_one_sided() {
+        // Residuals = 5 + 2·trend; visco signature = trend + 7 (its mean part is absorbed),
+        // drag signature = −trend. Projected visco = trend = (−1, 0, 1), ‖·‖ = √2, so
+        // z = (2·2)/√2 = 2√2 and θ̂ = 4/2 = 2; drag gets z = −2√2 (wrong sign: cannot explain).
+        let (d, l) = setup([3.0, 5.0, 7.0], [6.0, 7.0, 8.0], [1.0, 0.0, -1.0]);
+        let r = rank(&d, &l).unwrap();
+        let top = r.top().unwrap();
+        assert_eq!(top.effect.name, "viscoelastic");
+        assert!((top.z - 2.0 * 2f64.sqrt()).abs() < 1e-12);
+        assert!((top.estimate - 2.0).abs() < 1e-12);
+        assert!((top.std_error - 1.0 / 2f64.sqrt()).abs() < 1e-12);
+        assert!((top.identifiable_fraction - (2.0f64 / 149.0).sqrt()).abs() < 1e-12);
+        assert!((r.candidates[1].z + 2.0 * 2f64.sqrt()).abs() < 1e-12);
+        // p = 1 − Φ(2.828) = 0.00234; Bonferroni over 2: 0.00468 < 0.05: claimed.
+        assert!((top.p_value - 0.002_338_8).abs() < 1e-6);
+        assert!(r.any_claimed());
+        // Opposite directions are told apart by the sign, not reported as collinear.
+        assert!(r.indistinguishable.is_empty());
+    }
+
+    #[test]
+    fn absorbed_or_insensitive_effects_are_not_ranked() {
+        // Visco signature constant (fully absorbed), drag signature zero.
+        let (d, l) = setup([3.0, 5.0, 7.0], [2.0, 2.0, 2.0], [0.0; 3]);
+        let r = rank(&d, &l).unwrap();
+        assert!(r.top().is_none());
+        assert_eq!(r.candidates[0].status, Status::NotIdentifiable);
+        assert_eq!(r.candidates[1].status, Status::NoSensitivity);
+    }
+
+    #[test]
+    fn same_direction_signatures_are_indistinguishable() {
+        let (d, l) = setup([3.0, 5.0, 7.0], [-1.0, 0.0, 1.0], [-2.0, 0.1, 2.0]);
+        let r = rank(&d, &l).unwrap();
+        assert_eq!(r.indistinguishable.len(), 1);
+    }
+}
