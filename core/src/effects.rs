@@ -5,6 +5,7 @@
 //! |---|---|---|---|---|
 //! | viscoelastic damping | relaxation time A, s (0) | material pair | [`ViscoelasticNormal`] | Fn_v = −(4/3)E*·A·a·vn (Brilliantov et al. 1996) |
 //! | SJKR cohesion | energy density k, J/m³ (0) | material pair | [`CohesionSjkr`] | Fc = k·π·2R*α (LIGGGHTS sjkr) |
+//! | hysteretic contact | plastic fraction λ (0) | material pair | [`HystereticNormal`] | unloading to a plastic set λ·α_max (after Walton & Braun 1986) |
 //! | air drag | drag coefficient Cd (0), air density ρ, kg/m³ | world | [`AirDrag`] | F = −½ρ·Cd·πr²·\|v\|v |
 //!
 //! With every effect off the step is bit-identical to the plain Hertz–Mindlin law (the golden
@@ -51,7 +52,7 @@
 //!    and how it maps onto [`EffectSpec`]. `arachis diagnose` then tests it as a candidate
 //!    and `arachis fit --with liquid_bridge` calibrates F_b with the base parameters.
 
-use crate::contact::{CohesionSjkr, ViscoelasticNormal};
+use crate::contact::{CohesionSjkr, HystereticNormal, ViscoelasticNormal};
 use crate::error::SetupError;
 use crate::material::{finite, MaterialId};
 use crate::num::Scalar;
@@ -68,6 +69,8 @@ pub struct EffectSpec {
     pub viscoelastic_time_s: f64,
     /// SJKR cohesion energy density k, J/m³ (0 = off).
     pub cohesion_energy_density_j_m3: f64,
+    /// Hysteretic normal contact: plastic fraction λ ∈ [0, 1) (0 = off); e = √(1 − λ).
+    pub plastic_fraction: f64,
 }
 
 fn non_negative(x: f64, what: &'static str) -> Result<f64, SetupError> {
@@ -90,6 +93,13 @@ impl<S: Scalar> World<'_, S> {
     ) -> Result<(), SetupError> {
         let tau = non_negative(spec.viscoelastic_time_s, "viscoelastic relaxation time")?;
         let k = non_negative(spec.cohesion_energy_density_j_m3, "cohesion energy density")?;
+        let lambda = non_negative(spec.plastic_fraction, "plastic fraction")?;
+        if lambda >= 1.0 {
+            return Err(SetupError::NotRepresentable {
+                what: "plastic fraction (must be < 1)",
+                value: lambda,
+            });
+        }
         let (ia, ib) = (a.0 as usize, b.0 as usize);
         if ia >= self.materials.len() || ib >= self.materials.len() {
             return Err(SetupError::UnknownMaterial { id: a.0.max(b.0) });
@@ -100,6 +110,7 @@ impl<S: Scalar> World<'_, S> {
         }
         p.viscoelastic = ViscoelasticNormal::new(tau, p.e_star_mpa);
         p.cohesion = CohesionSjkr::new(k);
+        p.hysteretic = HystereticNormal::new(lambda, p.e_star_mpa);
         for v in [p.viscoelastic.coef, p.cohesion.coef] {
             if !v.is_valid() {
                 return Err(SetupError::NotRepresentable {

@@ -13,6 +13,7 @@
 //! | tangential | [`CoulombLimit`] | `coulomb.rs` | \|Ft\| ≤ μs·Fn, history rescaled |
 //! | rolling | [`RollingCdt`] | `rolling_cdt.rs` | T = −μr·Fn·Ri·ω̂i (eq. 7, EDEM CDT) |
 //! | normal (optional) | [`ViscoelasticNormal`] | `viscoelastic_normal.rs` | Fn_v = −(4/3)E*·A·a·vn (Brilliantov 1996), before the clip |
+//! | normal (optional) | [`HystereticNormal`] | `hysteretic_normal.rs` | unloading F_max((α−λα_max)/(α_max−λα_max))^{3/2} (after Walton & Braun 1986) |
 //! | cohesion (optional) | [`CohesionSjkr`] | `cohesion_sjkr.rs` | Fc = −k·π·2R*α (SJKR), last, may attract |
 //!
 //! The optional terms are off by default and switched per pair with
@@ -36,6 +37,7 @@ pub mod cohesion_sjkr;
 pub mod coulomb;
 pub mod hertz_normal;
 pub mod history;
+pub mod hysteretic_normal;
 pub mod mindlin_tangential;
 pub mod normal_damping;
 pub mod rolling_cdt;
@@ -46,6 +48,7 @@ pub use cohesion_sjkr::CohesionSjkr;
 pub use coulomb::CoulombLimit;
 pub use hertz_normal::HertzNormal;
 pub use history::{ContactSlot, ContactState, WALL_PARTNER_FLAG};
+pub use hysteretic_normal::HystereticNormal;
 pub use mindlin_tangential::MindlinTangential;
 pub use normal_damping::NormalDamping;
 pub use rolling_cdt::RollingCdt;

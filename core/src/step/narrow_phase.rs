@@ -117,7 +117,7 @@ impl<S: Scalar> Ctx<'_, S> {
             lever_j,
         };
         let ow = owner as usize;
-        let mut state = if pair.tangential.on {
+        let mut state = if pair.keeps_history() {
             let base = ow * self.k;
             lookup(
                 &self.old_slots[base..base + self.old_count[ow] as usize],
@@ -151,7 +151,7 @@ impl<S: Scalar> Ctx<'_, S> {
             b.torque += tj;
             b.roll_torque += out.roll_j;
         }
-        if pair.tangential.on {
+        if pair.keeps_history() {
             let cnt = self.new_count[ow] as usize;
             if cnt >= self.k {
                 return Err(Fail::Capacity);

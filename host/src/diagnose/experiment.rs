@@ -200,6 +200,7 @@ fn floor_world<'a>(
         EffectSpec {
             viscoelastic_time_s: p.viscoelastic_time_s,
             cohesion_energy_density_j_m3: p.cohesion_j_m3,
+            ..EffectSpec::default()
         },
     )
     .map_err(core_err)?;
