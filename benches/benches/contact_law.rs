@@ -43,6 +43,7 @@ fn bench_law<S: Scalar>(g: &mut criterion::BenchmarkGroup<'_, criterion::measure
     let k = kinematics::<S>();
     let start = ContactState {
         delta: Vec3::from_f64([1e-4, -2e-4, 0.0]),
+        ..ContactState::default()
     };
     g.bench_function(S::NAME, |b| {
         b.iter(|| {

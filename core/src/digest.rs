@@ -149,6 +149,10 @@ impl<S: Scalar> World<'_, S> {
             for c in self.contact_slots(i as u32) {
                 h.u64(c.partner as u64);
                 h.v(c.state.delta);
+                // Hashed only when set, so digests of runs without hysteresis are unchanged.
+                if c.state.max_overlap != S::ZERO {
+                    h.s(c.state.max_overlap);
+                }
             }
         }
         h.u64(self.walls.len() as u64);

@@ -111,6 +111,13 @@ pub enum SetupError {
         /// What is wrong.
         reason: &'static str,
     },
+    /// An optional effect's parameter is negative (its off value is 0).
+    NegativeEffectParameter {
+        /// Which parameter.
+        what: &'static str,
+        /// The value given.
+        value: f64,
+    },
 }
 
 impl fmt::Display for SetupError {
@@ -159,6 +166,9 @@ impl fmt::Display for SetupError {
                  (a fraction of the Rayleigh time of the smallest sphere)"
             ),
             SetupError::BadWall { reason } => write!(f, "invalid wall: {reason}"),
+            SetupError::NegativeEffectParameter { what, value } => {
+                write!(f, "{what} must be >= 0 (0 switches the effect off), got {value}")
+            }
         }
     }
 }

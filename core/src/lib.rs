@@ -84,6 +84,7 @@ pub mod body;
 pub mod bond;
 pub mod contact;
 pub mod digest;
+pub mod effects;
 pub mod error;
 pub mod material;
 pub mod num;

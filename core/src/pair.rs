@@ -8,6 +8,7 @@
 //! assert!(p.validate().is_ok());
 //! ```
 
+use crate::contact::{CohesionSjkr, HystereticNormal, ViscoelasticNormal};
 use crate::contact::{
     ContactForce, ContactKinematics, ContactState, ContactTerm, CoulombLimit, HertzNormal,
     MindlinTangential, NormalDamping, RollingCdt, TangentialDamping,
@@ -114,6 +115,12 @@ pub struct PairParams<S> {
     pub coulomb: CoulombLimit<S>,
     /// CDT rolling friction.
     pub rolling: RollingCdt<S>,
+    /// Optional effect: viscoelastic normal damping (off by default; [`crate::effects`]).
+    pub viscoelastic: ViscoelasticNormal<S>,
+    /// Optional effect: SJKR cohesion (off by default; [`crate::effects`]).
+    pub cohesion: CohesionSjkr<S>,
+    /// Optional effect: hysteretic (plastic) normal contact (off by default).
+    pub hysteretic: HystereticNormal<S>,
 }
 
 impl<S: Scalar> PairParams<S> {
@@ -132,6 +139,9 @@ impl<S: Scalar> PairParams<S> {
             tangential_damping: TangentialDamping::new(spec.restitution, g_star),
             coulomb: CoulombLimit::new(spec.friction),
             rolling: RollingCdt::new(spec.rolling_friction),
+            viscoelastic: ViscoelasticNormal::default(),
+            cohesion: CohesionSjkr::default(),
+            hysteretic: HystereticNormal::default(),
         };
         p.hertz.on &= t.hertz_normal;
         p.normal_damping.on &= t.normal_damping;
@@ -140,6 +150,12 @@ impl<S: Scalar> PairParams<S> {
         p.coulomb.on &= t.coulomb_limit && t.mindlin_tangential;
         p.rolling.on &= t.rolling_cdt;
         p
+    }
+
+    /// `true` when contacts of this pair keep history (tangential spring or hysteresis).
+    #[inline(always)]
+    pub fn keeps_history(&self) -> bool {
+        self.tangential.on | self.hysteretic.on
     }
 
     /// `true` when a damping term needs √(a·m*).
@@ -157,12 +173,15 @@ impl<S: Scalar> PairParams<S> {
     ) -> ContactForce<S> {
         let mut out = ContactForce::default();
         self.hertz.apply(k, state, &mut out);
+        self.hysteretic.apply(k, state, &mut out);
         self.normal_damping.apply(k, state, &mut out);
+        self.viscoelastic.apply(k, state, &mut out);
         crate::contact::clip_normal(&mut out);
         self.tangential.apply(k, state, &mut out);
         self.tangential_damping.apply(k, state, &mut out);
         self.coulomb.apply(k, state, &mut out);
         self.rolling.apply(k, state, &mut out);
+        self.cohesion.apply(k, state, &mut out);
         out
     }
 }

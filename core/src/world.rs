@@ -123,6 +123,8 @@ pub struct World<'a, S: Scalar> {
     pub(crate) list_skin: S,
     /// Bonded-particle model state ([`crate::bond`]).
     pub(crate) bond_table: crate::bond::Bonds<'a, S>,
+    /// Optional air drag (off by default; [`crate::effects`]).
+    pub(crate) air_drag: crate::step::air_drag::AirDrag<S>,
 }
 
 impl<'a, S: Scalar> World<'a, S> {
@@ -185,6 +187,7 @@ impl<'a, S: Scalar> World<'a, S> {
             list_drift: S::ZERO,
             list_skin: S::ZERO,
             bond_table: crate::bond::Bonds::empty(),
+            air_drag: crate::step::air_drag::AirDrag::default(),
         })
     }
 

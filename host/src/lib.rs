@@ -5,6 +5,7 @@
 #![deny(missing_docs)]
 
 pub mod cli;
+pub mod diagnose;
 pub mod doe;
 pub mod io;
 pub mod lab;

@@ -17,6 +17,9 @@ pub const WALL_PARTNER_FLAG: u32 = 0x8000_0000;
 pub struct ContactState<S> {
     /// Accumulated tangential displacement δt of j relative to i, mm (seed 000 eq. (5)).
     pub delta: Vec3<S>,
+    /// Largest overlap α_max of this contact so far, mm (only kept by the hysteretic normal
+    /// term; 0 otherwise).
+    pub max_overlap: S,
 }
 
 /// One history slot: partner key and state.

@@ -12,6 +12,13 @@
 //! | tangential | [`TangentialDamping`] | `tangential_damping.rs` | Ft_d = −2√(5/6)β√(St m*)·vt (eq. 6) |
 //! | tangential | [`CoulombLimit`] | `coulomb.rs` | \|Ft\| ≤ μs·Fn, history rescaled |
 //! | rolling | [`RollingCdt`] | `rolling_cdt.rs` | T = −μr·Fn·Ri·ω̂i (eq. 7, EDEM CDT) |
+//! | normal (optional) | [`ViscoelasticNormal`] | `viscoelastic_normal.rs` | Fn_v = −(4/3)E*·A·a·vn (Brilliantov 1996), before the clip |
+//! | normal (optional) | [`HystereticNormal`] | `hysteretic_normal.rs` | unloading F_max((α−λα_max)/(α_max−λα_max))^{3/2} (after Walton & Braun 1986) |
+//! | cohesion (optional) | [`CohesionSjkr`] | `cohesion_sjkr.rs` | Fc = −k·π·2R*α (SJKR), last, may attract |
+//!
+//! The optional terms are off by default and switched per pair with
+//! [`crate::world::World::set_pair_effects`]; [`crate::effects`] lists them (with air drag, a
+//! body force) and shows, with a worked example, how to add an effect of your own.
 //!
 //! The terms run in that order, so a later effect (cohesion, another rolling law, bonds) is a
 //! new struct added to the pair table at the right stage, without touching these.
@@ -26,21 +33,27 @@
 //! towards j; relative velocity is v_j − v_i at the contact point, so vn = v_rel·n > 0 when
 //! separating. Forces in [`ContactForce`] act on j; i receives the opposite.
 
+pub mod cohesion_sjkr;
 pub mod coulomb;
 pub mod hertz_normal;
 pub mod history;
+pub mod hysteretic_normal;
 pub mod mindlin_tangential;
 pub mod normal_damping;
 pub mod rolling_cdt;
 pub mod tangential_damping;
+pub mod viscoelastic_normal;
 
+pub use cohesion_sjkr::CohesionSjkr;
 pub use coulomb::CoulombLimit;
 pub use hertz_normal::HertzNormal;
 pub use history::{ContactSlot, ContactState, WALL_PARTNER_FLAG};
+pub use hysteretic_normal::HystereticNormal;
 pub use mindlin_tangential::MindlinTangential;
 pub use normal_damping::NormalDamping;
 pub use rolling_cdt::RollingCdt;
 pub use tangential_damping::TangentialDamping;
+pub use viscoelastic_normal::ViscoelasticNormal;
 
 use crate::num::{Scalar, Vec3};
 

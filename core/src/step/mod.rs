@@ -15,6 +15,7 @@
 //! the order of contacts (DESIGN §5); the order is fixed anyway so the f64 reference is also
 //! reproducible.
 
+pub mod air_drag;
 pub mod body_forces;
 pub mod bonds;
 pub mod broad_phase;
@@ -46,6 +47,9 @@ impl<S: Scalar> World<'_, S> {
             });
         }
         self.apply_body_forces()?;
+        if self.air_drag.on {
+            self.apply_air_drag()?;
+        }
         self.ensure_neighbour_list()?;
         self.contacts()?;
         self.bond_forces()?;

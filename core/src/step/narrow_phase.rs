@@ -112,7 +112,7 @@ impl<S: Scalar> Ctx<'_, S> {
             lever_i,
             lever_j,
         };
-        if !pair.tangential.on {
+        if !pair.keeps_history() {
             *state = ContactState::default();
         }
         let out = pair.evaluate(&kin, state);
@@ -274,7 +274,7 @@ fn sphere_walls<S: Scalar>(
             };
             let key = wall_key(wi as u32, face);
             let mut scratch = ContactState::default();
-            let state = if pair.tangential.on {
+            let state = if pair.keeps_history() {
                 let at = match list[..cnt].iter().position(|e| key_of(e.partner) == key) {
                     Some(at) => at,
                     None => {
@@ -432,7 +432,7 @@ fn sphere_pair<S: Scalar>(
         r_star_alpha,
         m_star,
     ) {
-        Ok(_) => Ok(pair.tangential.on),
+        Ok(_) => Ok(pair.keeps_history()),
         Err(Overflowed) => Err(overflow()),
     }
 }

@@ -3,12 +3,16 @@
 //! Every subcommand returns `anyhow::Result`; `main` prints the error chain and exits with
 //! status 2, so bad input is always a clear message and never a panic.
 
+pub mod compare;
+pub mod diagnose;
 pub mod doe;
+pub mod fit;
 pub mod lab;
 pub mod lab_repose;
 pub mod pour;
 pub mod pulloff;
 pub mod study;
+pub mod synth;
 
 use clap::{Parser, Subcommand};
 
@@ -34,6 +38,14 @@ pub enum Command {
     Study(study::Args),
     /// Virtual tensile test: pull a bonded pod off its stalk, print the detachment force.
     Pulloff(pulloff::Args),
+    /// Diagnosis: simulate a study's experiments and test the misfit per experiment.
+    Compare(compare::Args),
+    /// Diagnosis: rank the optional effects that could explain the misfit.
+    Diagnose(diagnose::Args),
+    /// Diagnosis: recalibrate with an effect on; nested tests, AIC/BIC, held-out error.
+    Fit(fit::Args),
+    /// Diagnosis: write synthetic measurements with a hidden effect.
+    Synth(synth::Args),
 }
 
 impl Cli {
@@ -45,6 +57,10 @@ impl Cli {
             Command::Doe(args) => doe::run(args),
             Command::Study(args) => study::run(args),
             Command::Pulloff(args) => pulloff::run(args),
+            Command::Compare(args) => compare::run(args),
+            Command::Diagnose(args) => diagnose::run(args),
+            Command::Fit(args) => fit::run(args),
+            Command::Synth(args) => synth::run(args),
         }
     }
 }

@@ -1,0 +1,152 @@
+//! Optional physical effects: a catalogue of terms that are **off** by default and that
+//! calibration (and `arachis diagnose`) can switch on and vary.
+//!
+//! | effect | parameter (off value) | scope | term | formula |
+//! |---|---|---|---|---|
+//! | viscoelastic damping | relaxation time A, s (0) | material pair | [`ViscoelasticNormal`] | Fn_v = −(4/3)E*·A·a·vn (Brilliantov et al. 1996) |
+//! | SJKR cohesion | energy density k, J/m³ (0) | material pair | [`CohesionSjkr`] | Fc = k·π·2R*α (LIGGGHTS sjkr) |
+//! | hysteretic contact | plastic fraction λ (0) | material pair | [`HystereticNormal`] | unloading to a plastic set λ·α_max (after Walton & Braun 1986) |
+//! | air drag | drag coefficient Cd (0), air density ρ, kg/m³ | world | [`AirDrag`] | F = −½ρ·Cd·πr²·\|v\|v |
+//!
+//! With every effect off the step is bit-identical to the plain Hertz–Mindlin law (the golden
+//! digests in `testdata/digests` do not change): each term is guarded by its `on` flag.
+//!
+//! # Adding an effect of your own (worked example)
+//!
+//! Say contacts in a humid store gain a constant liquid-bridge pull F_b (N) while they touch.
+//! 1. **The term.** A new file `contact/liquid_bridge.rs` with a struct holding its `on` flag
+//!    and a pair constant in internal units, implementing [`crate::contact::ContactTerm`]:
+//!    ```
+//!    use arachis_core::contact::{ContactForce, ContactKinematics, ContactState, ContactTerm};
+//!    use arachis_core::num::{Fx, Scalar, Vec3};
+//!
+//!    /// Constant bridge force. Off value: F_b = 0.
+//!    #[derive(Clone, Copy, Default)]
+//!    struct LiquidBridge<S> { on: bool, force_n: S }
+//!
+//!    impl<S: Scalar> LiquidBridge<S> {
+//!        /// F_b in N (≥ 0); 0 is off.
+//!        fn new(force_n: f64) -> Self { LiquidBridge { on: force_n > 0.0, force_n: S::from_f64(force_n) } }
+//!    }
+//!    impl<S: Scalar> ContactTerm<S> for LiquidBridge<S> {
+//!        fn apply(&self, _: &ContactKinematics<S>, _: &mut ContactState<S>, out: &mut ContactForce<S>) {
+//!            if self.on { out.normal -= self.force_n; } // attractive: reduces the push on j
+//!        }
+//!    }
+//!
+//!    // Unit test against theory: the force is exactly −F_b while in contact.
+//!    let k = ContactKinematics { normal: Vec3::new(Fx::ZERO, Fx::ZERO, Fx::ONE),
+//!        overlap: Fx::from_f64(0.01), contact_radius: Fx::from_f64(0.2), sqrt_a_mstar: Fx::ZERO,
+//!        vn: Fx::ZERO, vt: Vec3::ZERO, dt: Fx::from_f64(1e-3), lever_i: Fx::ONE, lever_j: Fx::ZERO };
+//!    let mut out = ContactForce::default();
+//!    LiquidBridge::<Fx>::new(0.002).apply(&k, &mut ContactState::default(), &mut out);
+//!    assert!((out.normal.to_f64() + 0.002).abs() < 1e-9);
+//!    ```
+//! 2. **Wire it in.** Add a field to [`crate::pair::PairParams`] initialised to its default
+//!    (off) in `PairParams::new`, one `apply` line in `PairParams::evaluate` at the right stage
+//!    (before the clip if it is part of the repulsive law, after it if it may attract), and a
+//!    field to [`EffectSpec`] so [`World::set_pair_effects`] can set it. Keep the `on` guard:
+//!    that is what keeps the golden digests unchanged while the effect is off.
+//! 3. **Make it calibratable.** In the host, add an entry to the effect catalogue
+//!    (`host/src/diagnose/effects.rs`): its name, unit, off value, a finite-difference step
+//!    and how it maps onto [`EffectSpec`]. `arachis diagnose` then tests it as a candidate
+//!    and `arachis fit --with liquid_bridge` calibrates F_b with the base parameters.
+
+use crate::contact::{CohesionSjkr, HystereticNormal, ViscoelasticNormal};
+use crate::error::SetupError;
+use crate::material::{finite, MaterialId};
+use crate::num::Scalar;
+pub use crate::step::air_drag::AirDrag;
+use crate::world::World;
+
+/// Air density at 20 °C and 1 atm, kg/m³ (ISO 2533 standard atmosphere at sea level, 1.204).
+pub const AIR_DENSITY_20C_KG_M3: f64 = 1.204;
+
+/// The optional effects of one material pair. `Default` is all off.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct EffectSpec {
+    /// Viscoelastic dissipative relaxation time A, s (0 = off): velocity-dependent restitution.
+    pub viscoelastic_time_s: f64,
+    /// SJKR cohesion energy density k, J/m³ (0 = off).
+    pub cohesion_energy_density_j_m3: f64,
+    /// Hysteretic normal contact: plastic fraction λ ∈ [0, 1) (0 = off); e = √(1 − λ).
+    pub plastic_fraction: f64,
+}
+
+fn non_negative(x: f64, what: &'static str) -> Result<f64, SetupError> {
+    let x = finite(x, what)?;
+    if x < 0.0 {
+        return Err(SetupError::NegativeEffectParameter { what, value: x });
+    }
+    Ok(x)
+}
+
+impl<S: Scalar> World<'_, S> {
+    /// Switch the optional effects of the (already set) pair `a`–`b` (symmetric).
+    /// Errors: unknown material, pair not yet set, negative or non-finite parameters, or a
+    /// constant outside the fixed-point range.
+    pub fn set_pair_effects(
+        &mut self,
+        a: MaterialId,
+        b: MaterialId,
+        spec: EffectSpec,
+    ) -> Result<(), SetupError> {
+        let tau = non_negative(spec.viscoelastic_time_s, "viscoelastic relaxation time")?;
+        let k = non_negative(spec.cohesion_energy_density_j_m3, "cohesion energy density")?;
+        let lambda = non_negative(spec.plastic_fraction, "plastic fraction")?;
+        if lambda >= 1.0 {
+            return Err(SetupError::NotRepresentable {
+                what: "plastic fraction (must be < 1)",
+                value: lambda,
+            });
+        }
+        let (ia, ib) = (a.0 as usize, b.0 as usize);
+        if ia >= self.materials.len() || ib >= self.materials.len() {
+            return Err(SetupError::UnknownMaterial { id: a.0.max(b.0) });
+        }
+        let mut p = self.pairs[ia][ib];
+        if !p.defined {
+            return Err(SetupError::UnknownMaterial { id: b.0 });
+        }
+        p.viscoelastic = ViscoelasticNormal::new(tau, p.e_star_mpa);
+        p.cohesion = CohesionSjkr::new(k);
+        p.hysteretic = HystereticNormal::new(lambda, p.e_star_mpa);
+        for v in [p.viscoelastic.coef, p.cohesion.coef] {
+            if !v.is_valid() {
+                return Err(SetupError::NotRepresentable {
+                    what: "effect constant",
+                    value: v.to_f64(),
+                });
+            }
+        }
+        self.pairs[ia][ib] = p;
+        self.pairs[ib][ia] = p;
+        Ok(())
+    }
+
+    /// Switch air drag on (Cd > 0) or off (Cd = 0) for all bodies: air density ρ (kg/m³,
+    /// e.g. [`AIR_DENSITY_20C_KG_M3`]) and drag coefficient Cd (≈ 0.47 for a sphere at
+    /// Re 10³–10⁵).
+    pub fn set_air_drag(
+        &mut self,
+        air_density_kg_m3: f64,
+        drag_coefficient: f64,
+    ) -> Result<(), SetupError> {
+        let rho = non_negative(air_density_kg_m3, "air density")?;
+        let cd = non_negative(drag_coefficient, "drag coefficient")?;
+        let d = AirDrag::<S>::new(rho, cd);
+        if !d.coef.is_valid() {
+            return Err(SetupError::NotRepresentable {
+                what: "drag constant",
+                value: 0.5 * rho * cd,
+            });
+        }
+        self.air_drag = d;
+        Ok(())
+    }
+
+    /// The air-drag settings.
+    pub fn air_drag(&self) -> &AirDrag<S> {
+        &self.air_drag
+    }
+}

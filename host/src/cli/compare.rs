@@ -1,0 +1,113 @@
+//! `arachis compare STUDY`: simulate each measured experiment at each condition with the
+//! current calibration; print the standardised residuals and a lack-of-fit test per
+//! experiment; with `--plots DIR`, write one SVG per experiment (measured vs simulated against
+//! the condition).
+//!
+//! ```text
+//! arachis compare testdata/diagnosis-tutorial/measured.toml --plots out/
+//! ```
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+
+use crate::diagnose::plot::plot_experiment;
+use crate::diagnose::residuals::{lack_of_fit, Dataset};
+use crate::diagnose::sensitivity::predict;
+use crate::diagnose::study::Diagnosis;
+
+/// Arguments of `arachis compare`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Diagnosis study file (TOML with a [diagnosis] section).
+    pub study: PathBuf,
+    /// Directory for the SVG plots (created if missing); no plots without it.
+    #[arg(long)]
+    pub plots: Option<PathBuf>,
+}
+
+/// Runs `arachis compare`.
+pub fn run(args: Args) -> Result<()> {
+    let study = Diagnosis::load(&args.study)?;
+    let data = Dataset::new(&study)?;
+    let pred = predict(&data, &study.calibration)?;
+    print!("{}", report(&study, &data, &pred)?);
+    if let Some(dir) = &args.plots {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        for (ei, e) in study.experiment.iter().enumerate() {
+            let path = dir.join(format!("compare-{}-{}.svg", ei + 1, e.kind.name()));
+            plot_experiment(
+                &data,
+                ei,
+                &pred,
+                None,
+                &format!("{}: measured vs simulated", e.kind.name()),
+                &path,
+            )?;
+            println!("wrote {}", path.display());
+        }
+    }
+    Ok(())
+}
+
+/// The comparison table and lack-of-fit lines.
+pub fn report(study: &Diagnosis, data: &Dataset, pred: &[f64]) -> Result<String> {
+    use std::fmt::Write;
+    let mut s = String::new();
+    let r = data.standardised(pred);
+    let lof = lack_of_fit(data, pred)?;
+    for (ei, e) in study.experiment.iter().enumerate() {
+        writeln!(
+            s,
+            "experiment {} {}: {} vs {}",
+            ei + 1,
+            e.kind.name(),
+            e.kind.observable_label(),
+            e.kind.condition_label()
+        )?;
+        writeln!(
+            s,
+            "  condition      n   measured mean  ± SE         simulated       std. residual"
+        )?;
+        for (i, o) in data
+            .obs
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| o.experiment == ei)
+        {
+            writeln!(
+                s,
+                "  {:<12.6} {:>3}   {:<14.6} {:<12.3e} {:<15.6} {:+8.2}{}",
+                o.condition,
+                o.values.len(),
+                o.mean,
+                o.se_mean,
+                pred[i],
+                r[i],
+                if r[i].abs() > 3.0 {
+                    "  <-- beyond 3 SE"
+                } else {
+                    ""
+                }
+            )?;
+        }
+        let l = &lof[ei];
+        writeln!(
+            s,
+            "  lack of fit: sum r^2 = {:.2} over {} conditions, F = {:.2} on ({}, {}) df, p = {:.3e}{}",
+            l.chi2,
+            l.conditions,
+            l.chi2 / l.conditions as f64,
+            l.conditions,
+            l.df_pe,
+            l.p_value,
+            if l.p_value < 0.05 { "  -> the model misses something here" } else { "" }
+        )?;
+        writeln!(
+            s,
+            "  replicate RMS of (measured - simulated) = {:.4e}, pure-error SD = {:.4e}",
+            l.rms, l.sd
+        )?;
+    }
+    Ok(s)
+}

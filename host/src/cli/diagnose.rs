@@ -1,0 +1,165 @@
+//! `arachis diagnose STUDY`: rank the optional effects that are off by how much of the misfit
+//! each could explain (projected one-sided score test, Bonferroni over the candidates; see
+//! `diagnose::score`), say which are not identifiable or not distinguishable, and propose the
+//! measurement that best separates the top two.
+//!
+//! ```text
+//! arachis diagnose testdata/diagnosis-tutorial/measured.toml
+//! ```
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+
+use crate::diagnose::residuals::{lack_of_fit, Dataset};
+use crate::diagnose::score::{rank, Status, FAMILY_ALPHA, IDENTIFIABLE_FRACTION};
+use crate::diagnose::sensitivity::Linearisation;
+use crate::diagnose::separate::propose;
+use crate::diagnose::study::Diagnosis;
+
+/// Replicates assumed for a proposed extra measurement.
+const PROPOSAL_REPLICATES: usize = 4;
+
+/// Arguments of `arachis diagnose`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Diagnosis study file.
+    pub study: PathBuf,
+    /// Skip the search for the measurement that separates the top two effects.
+    #[arg(long)]
+    pub no_proposal: bool,
+}
+
+/// Runs `arachis diagnose`.
+pub fn run(args: Args) -> Result<()> {
+    use std::fmt::Write;
+    let study = Diagnosis::load(&args.study)?;
+    let data = Dataset::new(&study)?;
+    let lin = Linearisation::new(&data, &study.calibration)?;
+    let lof = lack_of_fit(&data, &lin.predictions)?;
+    let mut s = String::new();
+    writeln!(s, "lack of fit at the current calibration:")?;
+    for l in &lof {
+        writeln!(
+            s,
+            "  {:<8} sum r^2 {:>8.2} over {} conditions, p = {:.3e}",
+            study.experiment[l.experiment].kind.name(),
+            l.chi2,
+            l.conditions,
+            l.p_value
+        )?;
+    }
+    let r = rank(&data, &lin)?;
+    writeln!(
+        s,
+        "\ncandidate effects (one-sided score test, projected off {}; Bonferroni over {} tested, family alpha {FAMILY_ALPHA}):",
+        lin.calibrated.iter().map(|p| p.name).collect::<Vec<_>>().join(", "),
+        r.tested
+    )?;
+    writeln!(s, "  rank effect         z       p         p(adj)    estimate ± SE                 identifiable  verdict")?;
+    for (k, c) in r.candidates.iter().enumerate() {
+        let verdict = match c.status {
+            Status::Tested { claimed: true } => "MISSING: explains the misfit".to_string(),
+            Status::Tested { claimed: false } => "not needed by these data".to_string(),
+            Status::NotIdentifiable => format!(
+                "NOT IDENTIFIABLE: the calibration absorbs it (< {:.0} % of its signature left); measure more conditions",
+                100.0 * IDENTIFIABLE_FRACTION
+            ),
+            Status::NoSensitivity => "no measured experiment responds to it".to_string(),
+        };
+        if let Status::Tested { .. } = c.status {
+            writeln!(
+                s,
+                "  {:<4} {:<14} {:+7.2} {:<9.2e} {:<9.2e} {:+.3e} ± {:.3e} {:<5} {:<12.2} {}",
+                k + 1,
+                c.effect.name,
+                c.z,
+                c.p_value,
+                c.p_adjusted,
+                c.estimate,
+                c.std_error,
+                c.effect.unit,
+                c.identifiable_fraction,
+                verdict
+            )?;
+        } else {
+            writeln!(
+                s,
+                "  -    {:<14} {:>7} {:<9} {:<9} {:<29} {:<12.2} {}",
+                c.effect.name, "-", "-", "-", "-", c.identifiable_fraction, verdict
+            )?;
+        }
+    }
+    for (a, b, cos) in &r.indistinguishable {
+        writeln!(
+            s,
+            "  NOT DISTINGUISHABLE: {a} and {b} explain the same misfit with these data (cosine {cos:.3})"
+        )?;
+    }
+    match r.top() {
+        Some(t) if r.any_claimed() => writeln!(
+            s,
+            "\nverdict: the model lacks an effect; best candidate '{}' (try: arachis fit STUDY --with {})",
+            t.effect.name, t.effect.name
+        )?,
+        Some(_) => writeln!(
+            s,
+            "\nverdict: no missing effect can be claimed at family alpha {FAMILY_ALPHA}"
+        )?,
+        None => writeln!(
+            s,
+            "\nverdict: no candidate effect is identifiable with these data; measure more conditions"
+        )?,
+    }
+    print!("{s}");
+    let tested: Vec<_> = r
+        .candidates
+        .iter()
+        .filter(|c| matches!(c.status, Status::Tested { .. }))
+        .collect();
+    // A proposal only helps when there is something to tell apart: a claimed effect or an
+    // indistinguishable pair.
+    if !args.no_proposal
+        && tested.len() >= 2
+        && (r.any_claimed() || !r.indistinguishable.is_empty())
+    {
+        let sd = |kind| {
+            study
+                .experiment
+                .iter()
+                .position(|e| e.kind == kind)
+                .map(|ei| data.pure_error[ei].sd)
+                .or_else(|| {
+                    study
+                        .experiment
+                        .iter()
+                        .find(|e| e.kind == kind)
+                        .and_then(|e| e.noise_sd)
+                })
+        };
+        let (a, b) = (tested[0], tested[1]);
+        if let Some(p) = propose(
+            &data,
+            &lin,
+            &study.calibration,
+            (a.effect, a.estimate),
+            (b.effect, b.estimate),
+            sd,
+            PROPOSAL_REPLICATES,
+        )? {
+            println!(
+                "to tell '{}' from '{}' apart: measure {} at {} = {:.4} ({} replicates); \
+                 separation {:.2} -> {:.2} standard errors",
+                a.effect.name,
+                b.effect.name,
+                p.kind.name(),
+                p.kind.condition_label(),
+                p.condition,
+                PROPOSAL_REPLICATES,
+                p.separation_now,
+                p.separation_after
+            );
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,207 @@
+//! `arachis fit STUDY --with EFFECT`: recalibrate the base parameters with the effect on and
+//! report the error before and after, the nested-model tests (likelihood ratio and F), AIC,
+//! AICc, BIC, the leave-one-condition-out error, and the parameters with standard errors.
+//! `--out FILE` writes the study with the new calibration (for the next `compare`).
+//!
+//! ```text
+//! arachis fit testdata/diagnosis-tutorial/measured.toml --with viscoelastic --out fitted.toml
+//! ```
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+
+use crate::diagnose::fit::compare_with;
+use crate::diagnose::params::{effect, CATALOGUE};
+use crate::diagnose::plot::plot_experiment;
+use crate::diagnose::residuals::{lack_of_fit, Dataset};
+use crate::diagnose::sensitivity::predict;
+use crate::diagnose::study::Diagnosis;
+use crate::io::atomic::write_string_atomic;
+
+/// Significance level of the nested-model tests in the verdict.
+const NESTED_ALPHA: f64 = 0.05;
+
+/// Arguments of `arachis fit`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Diagnosis study file.
+    pub study: PathBuf,
+    /// The effect to switch on and fit (viscoelastic, cohesion, drag).
+    #[arg(long = "with")]
+    pub with: String,
+    /// Skip the leave-one-condition-out refits (one refit per condition and model).
+    #[arg(long)]
+    pub no_loco: bool,
+    /// Write the study with the fitted calibration here.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Directory for SVG plots of measured vs before/after.
+    #[arg(long)]
+    pub plots: Option<PathBuf>,
+}
+
+/// Runs `arachis fit`.
+pub fn run(args: Args) -> Result<()> {
+    use std::fmt::Write;
+    let eff = effect(&args.with)?;
+    let study = Diagnosis::load(&args.study)?;
+    let data = Dataset::new(&study)?;
+    let c = compare_with(&data, &study.calibration, eff, !args.no_loco)?;
+    let mut s = String::new();
+    let before = predict(&data, &study.calibration)?;
+    let rows = [
+        ("current calibration", &before, c.sse_current, None),
+        (
+            "base refit, effect off",
+            &c.without.predictions,
+            c.without.sse,
+            Some(&c.without),
+        ),
+        (
+            "base refit + effect",
+            &c.with.predictions,
+            c.with.sse,
+            Some(&c.with),
+        ),
+    ];
+    writeln!(s, "error (SSE = sum of standardised residuals^2 over {} conditions; replicate RMS / pure-error SD per experiment):", c.n)?;
+    for (name, pred, sse, _) in &rows {
+        let lof = lack_of_fit(&data, pred)?;
+        let per: Vec<String> = lof
+            .iter()
+            .map(|l| {
+                format!(
+                    "{} {:.3}",
+                    study.experiment[l.experiment].kind.name(),
+                    l.rms / l.sd
+                )
+            })
+            .collect();
+        writeln!(
+            s,
+            "  {name:<24} SSE {sse:>9.2}   RMS/SD: {}",
+            per.join(", ")
+        )?;
+    }
+    for (name, _, _, fit) in &rows[1..] {
+        let f = fit.expect("fitted rows");
+        writeln!(
+            s,
+            "parameters, {name} ({} Gauss-Newton iterations):",
+            f.iterations
+        )?;
+        for (k, p) in f.free.iter().enumerate() {
+            writeln!(
+                s,
+                "  {:<16} {:.5e} ± {:.2e} {}",
+                p.name,
+                p.get(&f.params),
+                f.std_errors[k],
+                p.unit
+            )?;
+        }
+    }
+    writeln!(s, "nested-model test ({} on vs off):", eff.name)?;
+    writeln!(
+        s,
+        "  likelihood ratio  {:.2} ~ chi2(1), p = {:.3e}",
+        c.lr, c.lr_p
+    )?;
+    writeln!(
+        s,
+        "  F                 {:.2} ~ F(1, {}), p = {:.3e}",
+        c.f,
+        c.n - c.with.k(),
+        c.f_p
+    )?;
+    let n = c.n;
+    writeln!(
+        s,
+        "information criteria (lower is better):  off      on       difference"
+    )?;
+    let (a0, a1) = (c.without.aic(), c.with.aic());
+    let (ac0, ac1) = (c.without.aicc(n), c.with.aicc(n));
+    let (b0, b1) = (c.without.bic(n), c.with.bic(n));
+    writeln!(
+        s,
+        "  AIC                                   {a0:<8.2} {a1:<8.2} {:+.2}",
+        a1 - a0
+    )?;
+    writeln!(
+        s,
+        "  AICc                                  {ac0:<8.2} {ac1:<8.2} {:+.2}",
+        ac1 - ac0
+    )?;
+    writeln!(
+        s,
+        "  BIC                                   {b0:<8.2} {b1:<8.2} {:+.2}",
+        b1 - b0
+    )?;
+    if let Some((l0, l1)) = c.loco {
+        writeln!(
+            s,
+            "leave-one-condition-out RMS standardised prediction error: off {l0:.3}, on {l1:.3}"
+        )?;
+    }
+    let agree = c.lr_p < NESTED_ALPHA
+        && (c.f_p.is_nan() || c.f_p < NESTED_ALPHA)
+        && ac1 < ac0
+        && b1 < b0
+        && c.loco.is_none_or(|(l0, l1)| l1 < l0);
+    writeln!(
+        s,
+        "verdict: {}",
+        if agree {
+            format!(
+                "accept '{}': the nested tests, AICc, BIC{} agree",
+                eff.name,
+                if c.loco.is_some() {
+                    " and held-out error"
+                } else {
+                    ""
+                }
+            )
+        } else {
+            format!(
+                "do not accept '{}': the criteria do not all agree",
+                eff.name
+            )
+        }
+    )?;
+    print!("{s}");
+    if let Some(dir) = &args.plots {
+        std::fs::create_dir_all(dir)?;
+        for (ei, e) in study.experiment.iter().enumerate() {
+            let path = dir.join(format!("fit-{}-{}.svg", ei + 1, e.kind.name()));
+            plot_experiment(
+                &data,
+                ei,
+                &before,
+                Some((&format!("with {}", eff.name), &c.with.predictions)),
+                &format!(
+                    "{}: before (red) and after fitting {}",
+                    e.kind.name(),
+                    eff.name
+                ),
+                &path,
+            )?;
+            println!("wrote {}", path.display());
+        }
+    }
+    if let Some(out) = &args.out {
+        let mut st = study.clone();
+        st.calibration = c.with.params;
+        write_string_atomic(out, &st.to_toml()?)?;
+        println!(
+            "wrote {} (calibration: {})",
+            out.display(),
+            CATALOGUE
+                .iter()
+                .map(|p| format!("{} {:.5e}", p.name, p.get(&st.calibration)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,301 @@
+//! Recalibration with an effect switched on (DESIGN §10 step 3): weighted least squares of the
+//! condition means, Σ((ȳ − ŷ(θ))/SE)², by argmin's Gauss–Newton solver on nalgebra vectors,
+//! with finite-difference Jacobians ([`super::sensitivity::jacobian`]); the parameters are
+//! scaled to order one by their catalogue scale. Effect parameters are evaluated at max(θ, 0)
+//! (an effect cannot be negative).
+//!
+//! Reports (see [`Comparison`]): the error before/after, the nested-model test (likelihood
+//! ratio Δ = SSE₀ − SSE₁ ~ χ²₁ with the pure-error σ, and F = Δ/(SSE₁/(N − k₁)) ~ F(1, N − k₁)),
+//! AIC = SSE + 2k, AICc = AIC + 2k(k+1)/(N − k − 1) and BIC = SSE + k·ln N (Gaussian
+//! likelihood with σ from pure error, constants dropped), and the leave-one-condition-out
+//! error (each condition predicted by a fit without it, standardised).
+//! Standard errors: √diag((J̃ᵀJ̃)⁻¹) at the optimum (σ from pure error).
+
+use anyhow::{anyhow, bail, Context, Result};
+use argmin::core::{CostFunction, Executor, Jacobian, Operator, State};
+use argmin::solver::gaussnewton::GaussNewton;
+use nalgebra::{DMatrix, DVector};
+use statrs::distribution::{ChiSquared, ContinuousCDF, FisherSnedecor};
+
+use super::params::{ModelParams, ParamInfo, Role};
+use super::residuals::Dataset;
+use super::score::scale_rows;
+use super::sensitivity::{jacobian, predict};
+
+/// Gauss–Newton iteration limit.
+pub const MAX_ITERATIONS: u64 = 15;
+/// Convergence tolerance on the change of ‖r‖ (standardised units: 1e-4 is far below the
+/// sampling noise of ‖r‖, ≈ 0.7).
+const COST_TOLERANCE: f64 = 1e-4;
+/// A base parameter is fitted only when a change by its catalogue scale moves the
+/// standardised residuals by at least this much (otherwise the data cannot determine it and
+/// JᵀJ would be singular).
+pub const MIN_BASE_INFLUENCE: f64 = 1.0;
+
+/// The weighted least-squares problem handed to argmin.
+struct Problem<'a> {
+    data: &'a Dataset,
+    start: ModelParams,
+    free: Vec<&'static ParamInfo>,
+    weights: DVector<f64>,
+}
+
+impl Problem<'_> {
+    fn params(&self, u: &DVector<f64>) -> ModelParams {
+        let mut p = self.start;
+        for (k, info) in self.free.iter().enumerate() {
+            let mut v = u[k] * info.scale;
+            if info.role == Role::Effect {
+                v = v.max(0.0);
+            }
+            info.set(&mut p, v);
+        }
+        p
+    }
+}
+
+impl Operator for Problem<'_> {
+    type Param = DVector<f64>;
+    type Output = DVector<f64>;
+    fn apply(&self, u: &Self::Param) -> Result<Self::Output, argmin::core::Error> {
+        let p = self.params(u);
+        p.validate()?;
+        let pred = predict(self.data, &p)?;
+        Ok(DVector::from_iterator(
+            pred.len(),
+            pred.iter()
+                .zip(&self.data.obs)
+                .zip(self.weights.iter())
+                .map(|((y, o), w)| (y - o.mean) * w),
+        ))
+    }
+}
+
+impl CostFunction for Problem<'_> {
+    type Param = DVector<f64>;
+    type Output = f64;
+    fn cost(&self, u: &Self::Param) -> Result<f64, argmin::core::Error> {
+        Ok(self.apply(u)?.norm_squared())
+    }
+}
+
+impl Jacobian for Problem<'_> {
+    type Param = DVector<f64>;
+    type Jacobian = DMatrix<f64>;
+    fn jacobian(&self, u: &Self::Param) -> Result<Self::Jacobian, argmin::core::Error> {
+        let p = self.params(u);
+        let at = predict(self.data, &p)?;
+        let j = jacobian(self.data, &p, &at, &self.free)?;
+        let mut j = scale_rows(&j, &self.weights);
+        for (k, info) in self.free.iter().enumerate() {
+            j.column_mut(k).scale_mut(info.scale);
+        }
+        Ok(j)
+    }
+}
+
+/// A fitted model.
+#[derive(Clone, Debug)]
+pub struct FitResult {
+    /// Fitted parameters (the others as in the start).
+    pub params: ModelParams,
+    /// The free parameters.
+    pub free: Vec<&'static ParamInfo>,
+    /// Standard errors of the free parameters (their units).
+    pub std_errors: Vec<f64>,
+    /// Predictions at each condition.
+    pub predictions: Vec<f64>,
+    /// SSE = Σ standardised residual² over the conditions.
+    pub sse: f64,
+    /// Gauss–Newton iterations used.
+    pub iterations: u64,
+}
+
+impl FitResult {
+    /// Number of fitted parameters k.
+    pub fn k(&self) -> usize {
+        self.free.len()
+    }
+    /// AIC = SSE + 2k.
+    pub fn aic(&self) -> f64 {
+        self.sse + 2.0 * self.k() as f64
+    }
+    /// AICc = AIC + 2k(k+1)/(N − k − 1) (infinite when N ≤ k + 1).
+    pub fn aicc(&self, n: usize) -> f64 {
+        let k = self.k() as f64;
+        let d = n as f64 - k - 1.0;
+        if d <= 0.0 {
+            f64::INFINITY
+        } else {
+            self.aic() + 2.0 * k * (k + 1.0) / d
+        }
+    }
+    /// BIC = SSE + k·ln N.
+    pub fn bic(&self, n: usize) -> f64 {
+        self.sse + self.k() as f64 * (n as f64).ln()
+    }
+}
+
+/// Base parameters that the data can determine at `p`.
+pub fn determinable_base(data: &Dataset, p: &ModelParams) -> Result<Vec<&'static ParamInfo>> {
+    let base: Vec<&'static ParamInfo> = super::params::base().collect();
+    let at = predict(data, p)?;
+    let j = jacobian(data, p, &at, &base)?;
+    let w = DVector::from_iterator(data.obs.len(), data.obs.iter().map(|o| 1.0 / o.se_mean));
+    let j = scale_rows(&j, &w);
+    Ok(base
+        .into_iter()
+        .enumerate()
+        .filter(|(k, info)| j.column(*k).norm() * info.scale >= MIN_BASE_INFLUENCE)
+        .map(|(_, info)| info)
+        .collect())
+}
+
+/// Fit the parameters `free` from `start` (which also holds the fixed ones).
+pub fn fit(data: &Dataset, start: &ModelParams, free: &[&'static ParamInfo]) -> Result<FitResult> {
+    if free.is_empty() {
+        let predictions = predict(data, start)?;
+        let sse = data.standardised(&predictions).iter().map(|r| r * r).sum();
+        return Ok(FitResult {
+            params: *start,
+            free: Vec::new(),
+            std_errors: Vec::new(),
+            predictions,
+            sse,
+            iterations: 0,
+        });
+    }
+    if free.len() >= data.obs.len() {
+        bail!(
+            "{} parameters cannot be fitted to {} conditions",
+            free.len(),
+            data.obs.len()
+        );
+    }
+    let problem = Problem {
+        data,
+        start: *start,
+        free: free.to_vec(),
+        weights: DVector::from_iterator(data.obs.len(), data.obs.iter().map(|o| 1.0 / o.se_mean)),
+    };
+    let u0 = DVector::from_iterator(free.len(), free.iter().map(|i| i.get(start) / i.scale));
+    let solver = GaussNewton::new().with_tolerance(COST_TOLERANCE)?;
+    let res = Executor::new(problem, solver)
+        .configure(|s| s.param(u0).max_iters(MAX_ITERATIONS))
+        .run()
+        .map_err(|e| anyhow!("Gauss-Newton fit failed: {e}"))?;
+    let iterations = res.state().get_iter();
+    let u = res
+        .state()
+        .get_best_param()
+        .or(res.state().get_param())
+        .cloned()
+        .ok_or_else(|| anyhow!("Gauss-Newton returned no parameters"))?;
+    let problem = res.problem.problem.as_ref().context("problem lost")?;
+    let params = problem.params(&u);
+    let predictions = predict(data, &params)?;
+    let sse = data.standardised(&predictions).iter().map(|r| r * r).sum();
+    let j = problem.jacobian(&u)?;
+    let cov = (j.transpose() * &j).try_inverse().ok_or_else(|| {
+        anyhow!("the fitted parameters are not determined by the data (singular JᵀJ)")
+    })?;
+    let std_errors = free
+        .iter()
+        .enumerate()
+        .map(|(k, i)| cov[(k, k)].max(0.0).sqrt() * i.scale)
+        .collect();
+    Ok(FitResult {
+        params,
+        free: free.to_vec(),
+        std_errors,
+        predictions,
+        sse,
+        iterations,
+    })
+}
+
+/// Base-only fit against base + effect fit.
+#[derive(Clone, Debug)]
+pub struct Comparison {
+    /// Number of conditions N.
+    pub n: usize,
+    /// SSE at the current calibration.
+    pub sse_current: f64,
+    /// Base parameters refitted, effect off.
+    pub without: FitResult,
+    /// Base parameters and the effect fitted.
+    pub with: FitResult,
+    /// Likelihood-ratio statistic Δ = SSE₀ − SSE₁ and its χ²₁ p-value.
+    pub lr: f64,
+    /// p-value of the likelihood-ratio test.
+    pub lr_p: f64,
+    /// F = Δ/(SSE₁/(N − k₁)) and its F(1, N − k₁) p-value (NaN when N = k₁).
+    pub f: f64,
+    /// p-value of the F test.
+    pub f_p: f64,
+    /// Leave-one-condition-out RMS standardised prediction error, without / with the effect.
+    pub loco: Option<(f64, f64)>,
+}
+
+/// Fit with and without `effect`; `loco` adds the leave-one-condition-out error.
+pub fn compare_with(
+    data: &Dataset,
+    current: &ModelParams,
+    effect: &'static ParamInfo,
+    loco: bool,
+) -> Result<Comparison> {
+    let n = data.obs.len();
+    let pred = predict(data, current)?;
+    let sse_current = data.standardised(&pred).iter().map(|r| r * r).sum();
+    let base = determinable_base(data, current)?;
+    let without = fit(data, current, &base)?;
+    let mut start = without.params;
+    // Start the effect at one finite-difference step: at exactly 0 the forward difference is
+    // the right sensitivity, but Gauss–Newton needs room to move both ways.
+    effect.set(&mut start, effect.get(current).max(effect.fd_step));
+    let mut free = base.clone();
+    free.push(effect);
+    let with = fit(data, &start, &free)?;
+    let lr = (without.sse - with.sse).max(0.0);
+    let lr_p = 1.0 - ChiSquared::new(1.0)?.cdf(lr);
+    let dfr = n as f64 - with.k() as f64;
+    let (f, f_p) = if dfr > 0.0 && with.sse > 0.0 {
+        let f = lr / (with.sse / dfr);
+        (f, 1.0 - FisherSnedecor::new(1.0, dfr)?.cdf(f))
+    } else {
+        (f64::NAN, f64::NAN)
+    };
+    let loco = if loco {
+        let a = loco_rms(data, &without.params, &without.free)?;
+        let b = loco_rms(data, &with.params, &with.free)?;
+        Some((a, b))
+    } else {
+        None
+    };
+    Ok(Comparison {
+        n,
+        sse_current,
+        without,
+        with,
+        lr,
+        lr_p,
+        f,
+        f_p,
+        loco,
+    })
+}
+
+/// Leave-one-condition-out: refit without each condition (from `start`) and predict it;
+/// RMS of the standardised prediction errors.
+pub fn loco_rms(data: &Dataset, start: &ModelParams, free: &[&'static ParamInfo]) -> Result<f64> {
+    let mut ss = 0.0;
+    for i in 0..data.obs.len() {
+        let d = data.without(i);
+        let fitted = fit(&d, start, free)
+            .with_context(|| format!("leave-one-out fit without condition {}", i + 1))?;
+        let o = &data.obs[i];
+        let y = o.kind.simulate(o.condition, &fitted.params)?;
+        ss += ((o.mean - y) / o.se_mean).powi(2);
+    }
+    Ok((ss / data.obs.len() as f64).sqrt())
+}

@@ -1,0 +1,132 @@
+//! Which experiment and condition would tell two candidate effects apart.
+//!
+//! For a proposed extra measurement at condition x of experiment kind K (with `replicates`
+//! replicates and the experiment's noise SD), the augmented design has standardised
+//! sensitivities J̃ (calibrated parameters), s̃_a and s̃_b. The part of effect a's signature that
+//! neither the calibration nor effect b can mimic is ‖(I − P[J̃, s̃_b]) s̃_a‖; at the effect
+//! size θ_a it is worth that many standard errors (and symmetrically for b). The separation
+//! of a design is the smaller of the two; the proposal is the (K, x) that raises it most.
+//! Linearised, like the ranking; θ_a, θ_b are the ranking's one-step estimates (or one
+//! finite-difference step when the estimate is not positive).
+
+use anyhow::Result;
+use nalgebra::{DMatrix, DVector};
+
+use super::experiment::ExperimentKind;
+use super::params::{ModelParams, ParamInfo};
+use super::residuals::Dataset;
+use super::score::column_basis;
+use super::sensitivity::Linearisation;
+
+/// Candidate conditions per experiment kind.
+const GRID_POINTS: usize = 8;
+/// Practical condition ranges searched (narrower than what the simulation accepts).
+fn search_range(kind: ExperimentKind) -> (f64, f64) {
+    match kind {
+        ExperimentKind::Rebound => (0.02, 2.0),
+        ExperimentKind::Press => (1.0e-3, 0.2),
+        ExperimentKind::Fall => (0.1, 3.0),
+    }
+}
+
+/// A proposed measurement.
+#[derive(Clone, Debug)]
+pub struct Proposal {
+    /// Experiment kind.
+    pub kind: ExperimentKind,
+    /// Condition.
+    pub condition: f64,
+    /// Separation (standard errors) with the proposal added.
+    pub separation_after: f64,
+    /// Separation of the current design.
+    pub separation_now: f64,
+}
+
+fn separation(
+    jt: &DMatrix<f64>,
+    sa: &DVector<f64>,
+    sb: &DVector<f64>,
+    theta_a: f64,
+    theta_b: f64,
+) -> f64 {
+    let unmimicked = |s: &DVector<f64>, other: &DVector<f64>| {
+        let mut m = jt.clone().insert_column(jt.ncols(), 0.0);
+        m.set_column(jt.ncols(), other);
+        let q = column_basis(&m);
+        (s - &q * (q.transpose() * s)).norm()
+    };
+    (unmimicked(sa, sb) * theta_a.abs()).min(unmimicked(sb, sa) * theta_b.abs())
+}
+
+/// Best extra measurement to separate effects `a` and `b` (both candidates of `lin`).
+/// `noise_sd(kind)` gives the replicate SD for a kind, `None` to skip the kind.
+#[allow(clippy::too_many_arguments)]
+pub fn propose(
+    data: &Dataset,
+    lin: &Linearisation,
+    p: &ModelParams,
+    a: (&'static ParamInfo, f64),
+    b: (&'static ParamInfo, f64),
+    noise_sd: impl Fn(ExperimentKind) -> Option<f64>,
+    replicates: usize,
+) -> Result<Option<Proposal>> {
+    let n = data.obs.len();
+    let w: Vec<f64> = data.obs.iter().map(|o| 1.0 / o.se_mean).collect();
+    let col = |k: usize| -> usize {
+        lin.candidates
+            .iter()
+            .position(|c| c.name == [a.0.name, b.0.name][k])
+            .unwrap_or(usize::MAX)
+    };
+    let (ia, ib) = (col(0), col(1));
+    if ia == usize::MAX || ib == usize::MAX {
+        return Ok(None);
+    }
+    let jt = DMatrix::from_fn(n, lin.calibrated.len(), |i, j| {
+        lin.calibrated_jacobian[(i, j)] * w[i]
+    });
+    let sa = DVector::from_fn(n, |i, _| lin.candidate_jacobian[(i, ia)] * w[i]);
+    let sb = DVector::from_fn(n, |i, _| lin.candidate_jacobian[(i, ib)] * w[i]);
+    let theta_a = if a.1 > 0.0 { a.1 } else { a.0.fd_step };
+    let theta_b = if b.1 > 0.0 { b.1 } else { b.0.fd_step };
+    let now = separation(&jt, &sa, &sb, theta_a, theta_b);
+    let mut best: Option<Proposal> = None;
+    for kind in ExperimentKind::ALL {
+        let Some(sd) = noise_sd(kind) else { continue };
+        let wx = (replicates as f64).sqrt() / sd;
+        let (lo, hi) = search_range(kind);
+        for g in 0..GRID_POINTS {
+            let x = lo * (hi / lo).powf(g as f64 / (GRID_POINTS - 1) as f64);
+            let y0 = kind.simulate(x, p)?;
+            let d = |info: &ParamInfo, central: bool| -> Result<f64> {
+                let v = info.get(p);
+                let mut up = *p;
+                info.set(&mut up, v + info.fd_step);
+                let yu = kind.simulate(x, &up)?;
+                if central {
+                    let mut dn = *p;
+                    info.set(&mut dn, v - info.fd_step);
+                    Ok((yu - kind.simulate(x, &dn)?) / (2.0 * info.fd_step))
+                } else {
+                    Ok((yu - y0) / info.fd_step)
+                }
+            };
+            let mut jx = jt.clone().insert_row(n, 0.0);
+            for (k, info) in lin.calibrated.iter().enumerate() {
+                jx[(n, k)] = d(info, true)? * wx;
+            }
+            let sax = sa.clone().insert_row(n, d(a.0, false)? * wx);
+            let sbx = sb.clone().insert_row(n, d(b.0, false)? * wx);
+            let s = separation(&jx, &sax, &sbx, theta_a, theta_b);
+            if best.as_ref().is_none_or(|bp| s > bp.separation_after) {
+                best = Some(Proposal {
+                    kind,
+                    condition: x,
+                    separation_after: s,
+                    separation_now: now,
+                });
+            }
+        }
+    }
+    Ok(best)
+}

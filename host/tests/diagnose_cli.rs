@@ -1,0 +1,128 @@
+//! The diagnosis commands through the real binary: synth → compare → diagnose → fit on a
+//! hidden drag effect (the cheapest to fit: no base parameter responds to it), plus clear
+//! errors for bad input and the "not identifiable" message for a one-condition study.
+
+use std::process::{Command, Output};
+
+fn arachis(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_arachis"))
+        .args(args)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .output()
+        .expect("run arachis")
+}
+
+fn ok(out: &Output) -> String {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+const TEMPLATE: &str = "testdata/diagnosis-tutorial/template.toml";
+
+#[test]
+fn loop_finds_and_fits_hidden_drag() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = dir.path().join("m.toml");
+    let m = m.to_str().unwrap();
+    ok(&arachis(&[
+        "synth", TEMPLATE, "--hidden", "drag=0.3", "--seed", "3", "--out", m,
+    ]));
+    // Deterministic given the seed.
+    let m2 = dir.path().join("m2.toml");
+    ok(&arachis(&[
+        "synth",
+        TEMPLATE,
+        "--hidden",
+        "drag=0.3",
+        "--seed",
+        "3",
+        "--out",
+        m2.to_str().unwrap(),
+    ]));
+    assert_eq!(std::fs::read(m).unwrap(), std::fs::read(&m2).unwrap());
+    let plots = dir.path().join("plots");
+    let cmp = ok(&arachis(&[
+        "compare",
+        m,
+        "--plots",
+        plots.to_str().unwrap(),
+    ]));
+    assert!(cmp.contains("the model misses something here"), "{cmp}");
+    assert!(std::fs::read_to_string(plots.join("compare-3-fall.svg"))
+        .unwrap()
+        .contains("<svg"));
+    let diag = ok(&arachis(&["diagnose", m]));
+    assert!(diag.contains("1    drag"), "{diag}");
+    assert!(diag.contains("MISSING"), "{diag}");
+    let fit = ok(&arachis(&["fit", m, "--with", "drag", "--no-loco"]));
+    assert!(fit.contains("verdict: accept 'drag'"), "{fit}");
+}
+
+#[test]
+fn tutorial_measurements_regenerate_bit_for_bit() {
+    // docs/diagnosis-tutorial.md step 1: the committed file is what synth writes.
+    let dir = tempfile::tempdir().unwrap();
+    let m = dir.path().join("m.toml");
+    ok(&arachis(&[
+        "synth",
+        TEMPLATE,
+        "--hidden",
+        "viscoelastic=1.3e-5",
+        "--seed",
+        "7",
+        "--out",
+        m.to_str().unwrap(),
+    ]));
+    let committed = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../testdata/diagnosis-tutorial/measured.toml"
+    );
+    assert_eq!(
+        std::fs::read(&m).unwrap(),
+        std::fs::read(committed).unwrap()
+    );
+}
+
+#[test]
+fn one_condition_study_is_not_identifiable() {
+    let dir = tempfile::tempdir().unwrap();
+    let t = dir.path().join("t.toml");
+    std::fs::write(
+        &t,
+        "[diagnosis]\n[diagnosis.calibration]\nrestitution = 0.5\nyoungs_modulus_pa = 8.43e6\n\
+         [[diagnosis.experiment]]\nkind = \"rebound\"\n[[diagnosis.experiment.point]]\n\
+         condition = 0.4\nvalues = [0.45, 0.46, 0.44, 0.455]\n",
+    )
+    .unwrap();
+    let diag = ok(&arachis(&["diagnose", t.to_str().unwrap()]));
+    assert!(diag.contains("NOT IDENTIFIABLE"), "{diag}");
+    assert!(
+        diag.contains("no candidate effect is identifiable"),
+        "{diag}"
+    );
+}
+
+#[test]
+fn bad_input_is_a_clear_error() {
+    let out = arachis(&["fit", TEMPLATE, "--with", "magic"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("unknown parameter or effect 'magic'"));
+    // A template has no measurements.
+    let out = arachis(&["diagnose", TEMPLATE]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no values"));
+    let out = arachis(&[
+        "synth",
+        TEMPLATE,
+        "--hidden",
+        "drag=-1",
+        "--out",
+        "/nonexistent/x.toml",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("must be >= 0"));
+}
