@@ -13,6 +13,12 @@ pub enum ExperimentError {
         /// The accepted names.
         expected: String,
     },
+    /// A rig of the study's list that has no virtual experiment yet.
+    #[error("the {experiment} rig is not built yet (built: repose, incline_slide, compression)")]
+    NotBuilt {
+        /// The experiment.
+        experiment: &'static str,
+    },
     /// The mode name is not `quick` or `full`.
     #[error("unknown mode '{name}': expected quick or full")]
     UnknownMode {

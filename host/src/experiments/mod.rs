@@ -25,8 +25,10 @@
 //! println!("{} {} {}", obs.quantity, obs.value, obs.unit); // repose_angle 4x.x deg
 //! ```
 
+pub mod compression;
 pub mod error;
 pub mod frames;
+pub mod incline_slide;
 pub mod picture;
 pub mod repose;
 pub mod setup;
@@ -61,6 +63,10 @@ pub struct RunOptions {
 pub enum ObservationDetails {
     /// Repose rig.
     Repose(repose::ReposeDetails),
+    /// Incline rig.
+    InclineSlide(incline_slide::InclineDetails),
+    /// Compression rig.
+    Compression(compression::CompressionDetails),
 }
 
 /// The result of one virtual experiment.
@@ -108,9 +114,10 @@ pub fn run_experiment(
     let inputs = setup::RunInputs::resolve(study, experiment, values, mode, cache)?;
     match experiment {
         ExperimentKind::Repose => repose::run(&inputs, seed, options),
-        other => Err(ExperimentError::UnknownExperiment {
-            name: other.name().to_owned(),
-            expected: "repose".into(),
+        ExperimentKind::InclineSlide => incline_slide::run(&inputs, seed, options),
+        ExperimentKind::Compression => compression::run(&inputs, seed, options),
+        other => Err(ExperimentError::NotBuilt {
+            experiment: other.name(),
         }),
     }
 }

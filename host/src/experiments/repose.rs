@@ -131,12 +131,7 @@ pub fn run(
             ),
         });
     }
-    // Lattice points of one layer inside the reachable disc.
-    let half = (reach / cell).floor() as i64;
-    let layer: Vec<[f64; 2]> = (-half..=half)
-        .flat_map(|i| (-half..=half).map(move |j| [i as f64 * cell, j as f64 * cell]))
-        .filter(|p| p[0].hypot(p[1]) <= reach)
-        .collect();
+    let layer = layer_points(reach, cell);
     let layers = n.div_ceil(layer.len());
     let z0 = bound + WALL_CLEARANCE_MM;
     let top_mm = z0 + (layers as f64 - 1.0) * cell + bound;
@@ -302,6 +297,28 @@ pub fn run(
     })
 }
 
+/// Cell centres of one layer: concentric rings from the reachable radius `reach` inwards,
+/// `cell` apart, each holding as many points as fit `cell` apart along their chords, and
+/// one centre point when the innermost ring would be smaller than half a cell. Denser than
+/// a square lattice in a narrow cylinder (7 instead of 5 pods for the quick rig).
+pub fn layer_points(reach: f64, cell: f64) -> Vec<[f64; 2]> {
+    let mut points = Vec::new();
+    let mut r = reach;
+    while r >= 0.5 * cell {
+        let per_ring = (PI / (0.5 * cell / r).asin()).floor().max(1.0) as usize;
+        for k in 0..per_ring {
+            let a = 2.0 * PI * k as f64 / per_ring as f64;
+            points.push([r * a.cos(), r * a.sin()]);
+        }
+        r -= cell;
+    }
+    if r >= 0.0 {
+        // Room left at the centre: the innermost ring (radius r + cell) is a cell away.
+        points.push([0.0, 0.0]);
+    }
+    points
+}
+
 /// Sample standard deviation (n − 1, statrs); 0 for fewer than two values.
 pub fn sample_sd(values: &[f64]) -> f64 {
     use statrs::statistics::Statistics;
@@ -309,4 +326,25 @@ pub fn sample_sd(values: &[f64]) -> f64 {
         return 0.0;
     }
     values.std_dev()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn layer_points_keep_a_cell_apart_inside_the_reach() {
+        for (reach, cell) in [(36.5, 36.0), (22.0, 36.0), (81.0, 36.0), (5.0, 36.0)] {
+            let p = layer_points(reach, cell);
+            assert!(!p.is_empty());
+            for (i, a) in p.iter().enumerate() {
+                assert!(a[0].hypot(a[1]) <= reach + 1e-9);
+                for b in &p[i + 1..] {
+                    let d = (a[0] - b[0]).hypot(a[1] - b[1]);
+                    assert!(d >= cell - 1e-9, "{reach} {cell}: {a:?} {b:?} {d}");
+                }
+            }
+        }
+        assert_eq!(layer_points(36.5, 36.0).len(), 7);
+    }
 }
