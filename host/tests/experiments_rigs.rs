@@ -59,7 +59,7 @@ fn slide_angle_matches_atan_mu() {
 /// A one-sphere pod squeezed between two steel plates follows Hertz with two contacts in
 /// series, so the apparent modulus recovers the pod's E = 2G(1 + ν) (seed 000 eq. (12));
 /// the steel's compliance (E 2e11 Pa) shifts it by < 0.01 %. Tolerance 3 % (damping force
-/// at the 0.02 m/s plate speed and the read-out at one instant).
+/// at the 0.01 m/s plate speed and the read-out at one instant).
 #[test]
 fn compression_of_one_sphere_recovers_youngs_modulus() {
     let study = study_with_spheres(1);
@@ -133,14 +133,20 @@ fn poisson_above_half_runs_only_with_the_study_opt_in() {
         )
         .unwrap_err()
         .to_string();
-        assert!(err.contains("pod.poisson") && err.contains("0.586"), "{err}");
+        assert!(
+            err.contains("pod.poisson") && err.contains("0.586"),
+            "{err}"
+        );
     }
 }
 
 #[test]
 fn bad_input_is_refused_with_a_clear_message() {
     let e = parse_experiment("repos").unwrap_err().to_string();
-    assert!(e.contains("unknown experiment 'repos'") && e.contains("repose"), "{e}");
+    assert!(
+        e.contains("unknown experiment 'repos'") && e.contains("repose"),
+        "{e}"
+    );
     let e = parse_assignment("pod-pod.static_fricton=0.5")
         .unwrap_err()
         .to_string();
@@ -153,13 +159,19 @@ fn bad_input_is_refused_with_a_clear_message() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("'abc' is not a number"), "{e}");
-    let e = parse_assignment("pod-pod.static_friction").unwrap_err().to_string();
+    let e = parse_assignment("pod-pod.static_friction")
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("KEY=VALUE"), "{e}");
     let e = "medium".parse::<ModeName>().unwrap_err().to_string();
     assert!(e.contains("unknown mode 'medium'"), "{e}");
     let study = Study::load(Path::new(STUDY)).unwrap();
     for (key, value, words) in [
-        ("pod-pod.static_friction", -0.1, "outside the physical limits"),
+        (
+            "pod-pod.static_friction",
+            -0.1,
+            "outside the physical limits",
+        ),
         ("pod-pod.restitution", 1.5, "outside the physical limits"),
         ("pod.poisson", 1.2, "outside the physical limits"),
         ("pod.shear_modulus_pa", f64::NAN, "not a finite number"),

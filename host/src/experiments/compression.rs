@@ -23,7 +23,7 @@ use crate::study::Experiment;
 const EXPERIMENT: Experiment = Experiment::Compression;
 
 /// Plate speed, m/s.
-pub const PLATE_SPEED_M_S: f64 = 0.02;
+pub const PLATE_SPEED_M_S: f64 = 0.01;
 /// Compression at which the force is read, mm.
 pub const COMPRESSION_MM: f64 = 0.5;
 /// Gap between the plate and the pod at the start, mm.
@@ -55,9 +55,16 @@ pub fn run(
     let mut arena = Arena::new(1, template.spheres.len());
     let mut w = arena.world(EXPERIMENT)?;
     let mats = add_materials(&mut w, inputs, EXPERIMENT)?;
-    let (low, high) = template.spheres.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), s| {
-        (l.min(s.centre_mm[2] - s.radius_mm), h.max(s.centre_mm[2] + s.radius_mm))
-    });
+    let (low, high) =
+        template
+            .spheres
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), s| {
+                (
+                    l.min(s.centre_mm[2] - s.radius_mm),
+                    h.max(s.centre_mm[2] + s.radius_mm),
+                )
+            });
     w.add_wall(WallSpec::fixed(
         WallGeometry::Plane {
             point_m: [0.0; 3],
@@ -78,7 +85,7 @@ pub fn run(
             mats.wall,
         ))
         .map_err(e)?;
-    let pod = add_pod(
+    add_pod(
         &mut w,
         template,
         mats.pod,
@@ -92,9 +99,13 @@ pub fn run(
     let settle = steps_for(&w, SETTLE_S);
     run_steps(&mut w, settle, EXPERIMENT)?;
     frames.record(&w);
-    // The pod sank under its weight; measure its top now.
-    let sunk_mm = centre_z - w.body(pod).position.z.to_f64();
-    let gap_mm = START_GAP_MM + sunk_mm;
+    // The pod settled (and may have turned a little); measure its top now.
+    let pod_top_mm = w
+        .spheres()
+        .iter()
+        .map(|s| s.position.z.to_f64() + s.radius.to_f64())
+        .fold(f64::NEG_INFINITY, f64::max);
+    let gap_mm = top_mm + START_GAP_MM - pod_top_mm;
     w.set_wall_velocity_m_s(plate, [0.0, 0.0, -PLATE_SPEED_M_S])
         .map_err(e)?;
     let travel_mm = gap_mm + COMPRESSION_MM;
@@ -111,7 +122,8 @@ pub fn run(
         .fold(0.0, f64::max);
     // Hertz, two contacts in series: F = (4/3) E/(1 − ν²) √R (δ/2)^{3/2} (mm, N, MPa).
     let nu = inputs.pod.poisson;
-    let e_mpa = 3.0 * force_n * (1.0 - nu * nu) / (4.0 * radius_mm.sqrt() * (0.5 * delta_mm).powf(1.5));
+    let e_mpa =
+        3.0 * force_n * (1.0 - nu * nu) / (4.0 * radius_mm.sqrt() * (0.5 * delta_mm).powf(1.5));
     const PA_PER_MPA: f64 = 1e6;
     let digest = w.digest();
     drop(w);
