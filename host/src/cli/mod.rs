@@ -11,6 +11,7 @@ pub mod lab;
 pub mod lab_repose;
 pub mod pour;
 pub mod pulloff;
+pub mod simulate;
 pub mod study;
 pub mod synth;
 
@@ -46,6 +47,9 @@ pub enum Command {
     Fit(fit::Args),
     /// Diagnosis: write synthetic measurements with a hidden effect.
     Synth(synth::Args),
+    /// Run one virtual bench experiment of a study (repose, plate_drop, incline_slide,
+    /// rolling, compression).
+    Simulate(simulate::Args),
 }
 
 impl Cli {
@@ -61,6 +65,7 @@ impl Cli {
             Command::Diagnose(args) => diagnose::run(args),
             Command::Fit(args) => fit::run(args),
             Command::Synth(args) => synth::run(args),
+            Command::Simulate(args) => simulate::run(args),
         }
     }
 }
