@@ -3,6 +3,7 @@
 //! Every subcommand returns `anyhow::Result`; `main` prints the error chain and exits with
 //! status 2, so bad input is always a clear message and never a panic.
 
+pub mod calibrate;
 pub mod doe;
 pub mod lab;
 pub mod lab_repose;
@@ -31,6 +32,8 @@ pub enum Command {
     Doe(doe::Args),
     /// Study files: validate one before any simulation runs.
     Study(study::Args),
+    /// Calibrate a study end to end: screen, steepest ascent, Box–Behnken, optimise, validate.
+    Calibrate(calibrate::Args),
 }
 
 impl Cli {
@@ -41,6 +44,7 @@ impl Cli {
             Command::Lab(args) => lab::run(args),
             Command::Doe(args) => doe::run(args),
             Command::Study(args) => study::run(args),
+            Command::Calibrate(args) => calibrate::run(args),
         }
     }
 }
