@@ -29,7 +29,7 @@ const HEADROOM: f64 = 0.15;
 const BAR_FILL: f64 = 0.7;
 /// Font size of captions and labels.
 const CAPTION_FONT: u32 = 18;
-const LABEL_FONT: u32 = 14;
+const LABEL_FONT: u32 = 12;
 
 /// A plotting error as a message.
 fn plot_error<E: std::fmt::Display>(e: E) -> String {

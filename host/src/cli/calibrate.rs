@@ -44,7 +44,7 @@ pub struct Args {
     /// Simulations run at once (default: every core).
     #[arg(long, short, value_parser = clap::value_parser!(u32).range(1..))]
     pub jobs: Option<u32>,
-    /// Output folder (default: calibration-<study name>-<mode>).
+    /// Output folder (default: `calibration-STUDYNAME-MODE`).
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// No progress bar.
