@@ -44,6 +44,12 @@ pub fn write_all(
         path: figures_dir.clone(),
         reason: e.to_string(),
     })?;
+    for dir in [out, figures_dir.as_path()] {
+        super::run_cache::remove_stale_temporaries(dir).map_err(|e| CalibrateError::Io {
+            path: dir.to_owned(),
+            reason: e.to_string(),
+        })?;
+    }
     let unit = &calibration.target.unit;
     let mut figure_names = Vec::new();
     figure(

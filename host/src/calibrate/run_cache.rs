@@ -26,6 +26,18 @@ pub const RUN_FORMAT: &str = "arachis-run-1";
 /// leftovers of a killed run are removed when the cache opens.
 const TEMP_PREFIX: &str = ".tmp";
 
+/// Removes the temporary files an interrupted atomic write left in `dir` (best effort: a
+/// leftover that cannot be removed is ignored, never read).
+pub fn remove_stale_temporaries(dir: &Path) -> std::io::Result<()> {
+    for entry in std::fs::read_dir(dir)? {
+        let entry = entry?;
+        if entry.file_name().to_string_lossy().starts_with(TEMP_PREFIX) {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
+    Ok(())
+}
+
 /// One stored run as written.
 #[derive(Serialize)]
 struct StoredRun<'a> {
@@ -62,13 +74,7 @@ impl RunCache {
             reason: e.to_string(),
         };
         std::fs::create_dir_all(dir).map_err(io)?;
-        for entry in std::fs::read_dir(dir).map_err(io)? {
-            let entry = entry.map_err(io)?;
-            if entry.file_name().to_string_lossy().starts_with(TEMP_PREFIX) {
-                // Best effort: a leftover that cannot be removed is ignored, never read.
-                let _ = std::fs::remove_file(entry.path());
-            }
-        }
+        remove_stale_temporaries(dir).map_err(io)?;
         Ok(Self {
             dir: dir.to_owned(),
             simulator: simulator.id(),
