@@ -111,6 +111,13 @@ fn screening_flags_pod_pod_static_friction_and_the_optimum_validates_within_2_pe
     assert_eq!(c.target.value, 31.06);
     assert!(c.validation.passed, "{:?}", c.validation);
     assert!(c.validation.relative_error_pct < 2.0);
+    // The polynomial the optimiser searches is the ANOVA's coded equation.
+    use arachis::optimize::ResponseSurface;
+    let surface = c.box_behnken.surface();
+    for r in &c.box_behnken.runs {
+        let d = surface.predict(&r.coded) - c.box_behnken.anova.predict(&r.coded);
+        assert!(d.abs() < 1e-9, "{d}");
+    }
     // The optimum hits the target on the fitted surface.
     assert!((c.optimum.predicted - 31.06).abs() < 0.01);
     // The quadratic fit is adequate: lack of fit not significant against pure error.

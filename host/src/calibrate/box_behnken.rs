@@ -21,6 +21,7 @@ use super::screening::FactorInfo;
 use super::steepest_ascent::SteepestAscent;
 use super::{replicate_indices, CalibrateError, PlannedRun, RunRecord, Runner, TargetInfo};
 use crate::doe::box_behnken;
+use crate::optimize::Polynomial;
 use crate::stats::{analyze, Anova, CodedDesign, ModelOrder};
 use crate::study::plan::ModelOrder as PlanOrder;
 
@@ -48,6 +49,21 @@ pub struct BoxBehnkenStage {
     pub model: String,
     /// Its ANOVA and coded equation.
     pub anova: Anova,
+}
+
+impl BoxBehnkenStage {
+    /// The fitted coded equation as a polynomial (cheap to evaluate, unlike rebuilding the
+    /// terms per call with `Anova::predict`).
+    pub fn surface(&self) -> Polynomial {
+        let names = self.factors.iter().map(|f| f.label.clone()).collect();
+        let terms: Vec<(&str, f64)> = self
+            .anova
+            .coefficients
+            .iter()
+            .map(|c| (c.term.as_str(), c.estimate))
+            .collect();
+        Polynomial::new(names, &terms).expect("the fit's terms are terms of its factors")
+    }
 }
 
 /// The stats model order of the plan's `[plan.model] order`.

@@ -7,6 +7,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::box_behnken::BoxBehnkenStage;
 use super::screening::Screening;
+use crate::optimize::ResponseSurface;
 
 /// Figure size in pixels.
 const SIZE: (u32, u32) = (720, 480);
@@ -141,10 +142,11 @@ pub fn surface_map(
     };
     let cell = 2.0 / SURFACE_CELLS as f64;
     let centre = |n: usize| -1.0 + (n as f64 + 0.5) * cell;
+    let surface = bbd.surface();
     let mut values = Vec::with_capacity(SURFACE_CELLS * SURFACE_CELLS);
     for a in 0..SURFACE_CELLS {
         for b in 0..SURFACE_CELLS {
-            values.push(bbd.anova.predict(&coded_at(centre(a), centre(b))));
+            values.push(surface.predict(&coded_at(centre(a), centre(b))));
         }
     }
     let (lo, hi) = values

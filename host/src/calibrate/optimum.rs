@@ -92,8 +92,7 @@ pub fn run(
         .fold(0.0_f64, f64::max);
     let w = spread.max(MIN_HALF_WIDTH_FRACTION * t.abs());
     let goal = Goal::new(GoalKind::Target(t), t - w, t + w)?;
-    let anova = &bbd.anova;
-    let surface = |x: &[f64]| anova.predict(x);
+    let surface = bbd.surface();
     let k = bbd.factors.len();
     let found = runner.install(|| {
         optimise_desirability(
