@@ -132,7 +132,10 @@ impl fmt::Display for SetupError {
                 write!(f, "{what} friction coefficient must be >= 0, got {value}")
             }
             SetupError::PoissonOutOfRange { nu } => {
-                write!(f, "Poisson ratio must be in (-1, 0.5), got {nu}")
+                write!(
+                    f,
+                    "Poisson ratio must be in (-1, 0.5) (or (-1, 1) with PoissonRange::ContactModel), got {nu}"
+                )
             }
             SetupError::NonPositiveYoungsModulus { youngs_modulus_pa } => {
                 write!(f, "Young's modulus must be > 0, got {youngs_modulus_pa} Pa")

@@ -100,7 +100,7 @@ pub mod prelude {
     };
     pub use crate::contact::ContactSlot;
     pub use crate::error::{SetupError, StepError};
-    pub use crate::material::{MaterialId, MaterialSpec};
+    pub use crate::material::{MaterialId, MaterialSpec, PoissonRange};
     pub use crate::num::{Fx, Scalar, Vec3};
     pub use crate::pair::{PairSpec, TermSwitches};
     pub use crate::wall::{WallGeometry, WallId, WallSpec};

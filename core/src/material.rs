@@ -24,7 +24,8 @@ pub struct MaterialId(pub u16);
 pub struct MaterialSpec {
     /// Young's modulus E, Pa (> 0).
     pub youngs_modulus_pa: f64,
-    /// Poisson ratio ν, dimensionless, in (−1, 0.5).
+    /// Poisson ratio ν, dimensionless, in (−1, 0.5) (or (−1, 1) through
+    /// [`PoissonRange::ContactModel`]).
     pub poisson: f64,
     /// Density ρ, kg/m³ (> 0).
     pub density_kg_m3: f64,
@@ -49,9 +50,38 @@ pub(crate) fn finite(x: f64, what: &'static str) -> Result<f64, SetupError> {
     }
 }
 
+/// Which Poisson ratios a material may have.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum PoissonRange {
+    /// ν ∈ (−1, 0.5): an isotropic elastic solid (finite bulk modulus). The default.
+    #[default]
+    Isotropic,
+    /// ν ∈ (−1, 1): as far as the Hertz–Mindlin terms stay positive. 1 − ν² > 0 keeps
+    /// E* = [(1−νᵢ²)/Eᵢ + (1−νⱼ²)/Eⱼ]⁻¹ positive and (2 − ν)(1 + ν) > 0 keeps G* (DESIGN §2)
+    /// positive; the Rayleigh denominator 0.1631ν + 0.8766 stays positive too. Seed 000
+    /// Table 3 screens ν up to 0.586, so a calibration must be able to ask for it knowingly.
+    ContactModel,
+}
+
+impl PoissonRange {
+    /// True when `nu` lies in the range (open bounds).
+    pub fn contains(self, nu: f64) -> bool {
+        match self {
+            PoissonRange::Isotropic => nu > -1.0 && nu < 0.5,
+            PoissonRange::ContactModel => nu > -1.0 && nu < 1.0,
+        }
+    }
+}
+
 impl MaterialSpec {
-    /// Check ranges and convert to internal units.
+    /// Check ranges and convert to internal units; ν must lie in (−1, 0.5)
+    /// ([`PoissonRange::Isotropic`]).
     pub fn validate(&self) -> Result<Material, SetupError> {
+        self.validate_with(PoissonRange::Isotropic)
+    }
+
+    /// Like [`MaterialSpec::validate`], with the Poisson ratio checked against `range`.
+    pub fn validate_with(&self, range: PoissonRange) -> Result<Material, SetupError> {
         let e = finite(self.youngs_modulus_pa, "Young's modulus")?;
         let nu = finite(self.poisson, "Poisson ratio")?;
         let rho = finite(self.density_kg_m3, "density")?;
@@ -60,7 +90,7 @@ impl MaterialSpec {
                 youngs_modulus_pa: e,
             });
         }
-        if !(nu > -1.0 && nu < 0.5) {
+        if !range.contains(nu) {
             return Err(SetupError::PoissonOutOfRange { nu });
         }
         if rho <= 0.0 {

@@ -34,7 +34,7 @@ use crate::body::{
 };
 use crate::contact::ContactSlot;
 use crate::error::{CapacityKind, SetupError};
-use crate::material::{finite, Material, MaterialId, MaterialSpec, MAX_MATERIALS};
+use crate::material::{finite, Material, MaterialId, MaterialSpec, PoissonRange, MAX_MATERIALS};
 use crate::num::{Quat, Scalar, Vec3};
 use crate::pair::{PairParams, PairSpec};
 use crate::timestep::{max_stable_dt_s, rayleigh_time_s};
@@ -176,9 +176,20 @@ impl<'a, S: Scalar> World<'a, S> {
         })
     }
 
-    /// Add a material; returns its id.
+    /// Add a material; returns its id. ν must lie in (−1, 0.5).
     pub fn add_material(&mut self, spec: MaterialSpec) -> Result<MaterialId, SetupError> {
-        let m = spec.validate()?;
+        self.add_material_with(spec, PoissonRange::Isotropic)
+    }
+
+    /// Add a material whose Poisson ratio is checked against `range`: pass
+    /// [`PoissonRange::ContactModel`] to accept ν ∈ (−1, 1) knowingly (seed 000 Table 3
+    /// screens ν = 0.586). Returns its id.
+    pub fn add_material_with(
+        &mut self,
+        spec: MaterialSpec,
+        range: PoissonRange,
+    ) -> Result<MaterialId, SetupError> {
+        let m = spec.validate_with(range)?;
         let id = self.materials.len() as u16;
         self.materials.push(m).map_err(|_| SetupError::Capacity {
             kind: CapacityKind::Materials,

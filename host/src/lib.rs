@@ -7,6 +7,7 @@
 pub mod calibrate;
 pub mod cli;
 pub mod doe;
+pub mod experiments;
 pub mod io;
 pub mod lab;
 pub mod optimize;

@@ -12,7 +12,8 @@
 //! 5. [`validation`]: a simulation of the optimum and its relative error
 //!    ψ = |ζ′ − ζ|/ζ × 100 % (seed 000 eq. (21), §3.6.2).
 //!
-//! Every simulation goes through a [`Simulator`] and the [`run_cache`]: each finished run is
+//! Every simulation goes through a [`Simulator`] (the DEM rigs of `crate::experiments` via
+//! [`DemExperiment`], or in tests [`Seed000Surrogate`]) and the [`run_cache`]: each finished run is
 //! stored as `OUT/runs/<spec hash>.json` the moment it finishes, so an interrupted
 //! calibration resumes where it stopped and, the simulator being deterministic, ends with
 //! the same bits. Runs execute in parallel on a rayon pool of `jobs` threads; results are
@@ -20,6 +21,7 @@
 //! output. [`report`] writes `calibration.json`, `report.md` and SVG figures, all atomically.
 
 pub mod box_behnken;
+pub mod dem;
 pub mod error;
 pub mod figures;
 pub mod optimum;
@@ -39,6 +41,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use rayon::prelude::*;
 use serde::Serialize;
 
+pub use dem::DemExperiment;
 pub use error::CalibrateError;
 pub use progress::Progress;
 pub use run_cache::RunCache;

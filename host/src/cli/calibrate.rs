@@ -14,7 +14,8 @@ use anyhow::Context;
 use clap::ValueEnum;
 
 use crate::calibrate::{
-    calibrate, CalibrateOptions, Progress, RunResult, Seed000Surrogate, SimulationError, Simulator,
+    calibrate, CalibrateOptions, DemExperiment, Progress, RunResult, Seed000Surrogate,
+    SimulationError, Simulator,
 };
 use crate::study::{RunSpec, Study};
 
@@ -79,16 +80,17 @@ impl Simulator for Delayed {
 }
 
 /// The simulator `choice` names, for `study`.
-fn simulator(choice: SimulatorChoice, args: &Args) -> anyhow::Result<Box<dyn Simulator>> {
+fn simulator<'a>(
+    choice: SimulatorChoice,
+    args: &Args,
+    study: &'a Study,
+) -> anyhow::Result<Box<dyn Simulator + 'a>> {
     match choice {
         SimulatorChoice::Surrogate => Ok(Box::new(Delayed {
             inner: Seed000Surrogate::default(),
             delay: Duration::from_millis(args.surrogate_delay_ms),
         })),
-        SimulatorChoice::Dem => anyhow::bail!(
-            "the repose DEM experiment is not part of this build yet; \
-             `--simulator surrogate` runs the workflow on seed 000's closed-form surrogate"
-        ),
+        SimulatorChoice::Dem => Ok(Box::new(DemExperiment::new(study))),
     }
 }
 
@@ -111,7 +113,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             study.file().study.name
         ))
     });
-    let sim = simulator(args.simulator, &args)?;
+    let sim = simulator(args.simulator, &args, &study)?;
     let options = CalibrateOptions {
         mode,
         jobs: args.jobs.map(|j| j as usize),

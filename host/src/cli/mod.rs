@@ -8,6 +8,7 @@ pub mod doe;
 pub mod lab;
 pub mod lab_repose;
 pub mod pour;
+pub mod simulate;
 pub mod study;
 
 use clap::{Parser, Subcommand};
@@ -32,6 +33,9 @@ pub enum Command {
     Doe(doe::Args),
     /// Study files: validate one before any simulation runs.
     Study(study::Args),
+    /// Run one virtual bench experiment of a study (repose, plate_drop, incline_slide,
+    /// rolling, compression).
+    Simulate(simulate::Args),
     /// Calibrate a study end to end: screen, steepest ascent, Box–Behnken, optimise, validate.
     Calibrate(calibrate::Args),
 }
@@ -44,6 +48,7 @@ impl Cli {
             Command::Lab(args) => lab::run(args),
             Command::Doe(args) => doe::run(args),
             Command::Study(args) => study::run(args),
+            Command::Simulate(args) => simulate::run(args),
             Command::Calibrate(args) => calibrate::run(args),
         }
     }

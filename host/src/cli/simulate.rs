@@ -1,0 +1,177 @@
+//! `arachis simulate`: one virtual bench experiment of a study, from the command line.
+//!
+//! ```text
+//! arachis simulate repose --study testdata/peanut-pods-saline/study.toml \
+//!     [--mode quick|full] [--set pod-pod.static_friction=0.854 ...] [--seed N] \
+//!     [--vtk DIR] [--picture pile.svg|pile.png] [--json]
+//! ```
+//!
+//! Experiments: `repose`, `plate_drop`, `incline_slide`, `rolling`, `compression`
+//! ([`crate::experiments`]). `--set KEY=VALUE` overrides a registry parameter (SI, e.g.
+//! `pod.shear_modulus_pa=3.04e6`); parameters not set take the study's held values. The
+//! study and every `--set` are checked before anything is simulated. Prints the observable
+//! (with `--json`: the whole [`crate::experiments::Observation`] plus the run's spec hash
+//! and its CPU time, one JSON object).
+
+use std::path::PathBuf;
+
+use anyhow::{bail, Context};
+use serde::Serialize;
+
+use crate::experiments::picture::write_pile_picture;
+use crate::experiments::{
+    parse_assignment, parse_experiment, run_experiment, ExperimentKind, ModeName, Observation,
+    ObservationDetails, ParameterValues, RunOptions,
+};
+use crate::study::Study;
+
+/// Arguments of `arachis simulate`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The experiment: repose, plate_drop, incline_slide, rolling or compression.
+    pub experiment: String,
+    /// The study file (TOML).
+    #[arg(long, value_name = "STUDY.toml")]
+    pub study: PathBuf,
+    /// Run mode: quick (fewer pods, coarser filling) or full (seed scale); default: the
+    /// study's `[plan] mode`.
+    #[arg(long)]
+    pub mode: Option<String>,
+    /// Override a parameter, KEY=VALUE in SI (repeatable), e.g.
+    /// pod-pod.static_friction=0.854.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Placement seed; default: the study's `[plan.simulation] random_seed`.
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Write VTK frames (`frame_NNNNNN.vtk` plus `particles.pvd`) into DIR.
+    #[arg(long, value_name = "DIR")]
+    pub vtk: Option<PathBuf>,
+    /// Write a picture of the result (repose: the pile's silhouette and fitted flanks),
+    /// SVG or PNG by the file's extension.
+    #[arg(long, value_name = "FILE")]
+    pub picture: Option<PathBuf>,
+    /// Print the full observation as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Serialize)]
+struct Printed<'a> {
+    format: &'static str,
+    study: String,
+    mode: &'static str,
+    seed: u64,
+    values: &'a ParameterValues,
+    spec_hash: String,
+    /// CPU seconds of the simulating thread (a figure of this machine; not part of the
+    /// deterministic observation).
+    cpu_seconds: Option<f64>,
+    observation: &'a Observation,
+}
+
+/// Checks everything that can be checked before simulating.
+pub fn prepare(
+    args: &Args,
+) -> anyhow::Result<(Study, ExperimentKind, ParameterValues, ModeName, u64)> {
+    let experiment = parse_experiment(&args.experiment)?;
+    let study = Study::load(&args.study)?;
+    let mode: ModeName = match &args.mode {
+        Some(m) => m.parse()?,
+        None => study.file().plan.mode.parse()?,
+    };
+    let mut values = ParameterValues::new();
+    for text in &args.set {
+        let (key, value) = parse_assignment(text).with_context(|| format!("--set {text}"))?;
+        if values.insert(key.clone(), value).is_some() {
+            bail!("--set {key} is given twice");
+        }
+    }
+    crate::experiments::check_values(&study, &values).context("--set")?;
+    if let Some(p) = &args.picture {
+        let ext = p
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        if !matches!(ext.as_deref(), Some("svg") | Some("png")) {
+            bail!(
+                "--picture {}: the file name must end in .svg or .png",
+                p.display()
+            );
+        }
+        if experiment != ExperimentKind::Repose {
+            bail!("--picture is drawn for the repose experiment only");
+        }
+    }
+    let seed = args
+        .seed
+        .unwrap_or(study.file().plan.simulation.random_seed);
+    Ok((study, experiment, values, mode, seed))
+}
+
+/// Runs `arachis simulate`.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let (study, experiment, values, mode, seed) = prepare(&args)?;
+    let condition = study
+        .file()
+        .measurements
+        .iter()
+        .find(|m| m.experiment == experiment)
+        .map(|m| m.condition.clone())
+        .unwrap_or_default();
+    let spec_hash = study
+        .run_spec(experiment, &condition, &values, mode.as_str())
+        .map_err(anyhow::Error::msg)?
+        .spec_hash();
+    let options = RunOptions {
+        vtk_dir: args.vtk.clone(),
+        templates: None,
+    };
+    let cpu_start = thread_cpu_seconds();
+    let observation = run_experiment(&study, experiment, &values, mode, seed, &options)?;
+    let cpu_seconds = thread_cpu_seconds()
+        .zip(cpu_start)
+        .map(|(end, start)| end - start);
+    if let (Some(path), ObservationDetails::Repose(details)) = (&args.picture, &observation.details)
+    {
+        let title = format!("{} ({} mode, seed {seed})", study.file().study.name, mode);
+        write_pile_picture(path, details, &title)?;
+    }
+    if args.json {
+        let printed = Printed {
+            format: "arachis-simulate-1",
+            study: study.path().display().to_string(),
+            mode: mode.as_str(),
+            seed,
+            values: &values,
+            spec_hash: spec_hash.to_string(),
+            cpu_seconds,
+            observation: &observation,
+        };
+        println!("{}", serde_json::to_string_pretty(&printed)?);
+    } else {
+        println!(
+            "{} {} = {:.4} {} (mode {}, seed {seed}, spec {spec_hash}, digest {}{})",
+            experiment,
+            observation.quantity,
+            observation.value,
+            observation.unit,
+            mode,
+            observation.digest,
+            cpu_seconds
+                .map(|c| format!(", {c:.1} s CPU"))
+                .unwrap_or_default()
+        );
+    }
+    Ok(())
+}
+
+/// CPU time of the calling thread, s, from Linux's `/proc/thread-self/schedstat` (first
+/// field: ns on the CPU); `None` elsewhere. std has no CPU clock, and this figure is only
+/// printed, never used in a result.
+pub fn thread_cpu_seconds() -> Option<f64> {
+    const NS_PER_S: f64 = 1e9;
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: f64 = text.split_whitespace().next()?.parse().ok()?;
+    Some(ns / NS_PER_S)
+}
