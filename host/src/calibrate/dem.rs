@@ -122,3 +122,35 @@ impl Simulator for DemExperiment<'_> {
         Ok(Some(path))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::study::Experiment;
+
+    fn study() -> Study {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../testdata/peanut-pods-saline/study.toml"
+        );
+        Study::load(Path::new(path)).unwrap()
+    }
+
+    #[test]
+    fn the_spec_names_its_mode_and_an_unknown_one_is_an_error() {
+        let study = study();
+        let dem = DemExperiment::new(&study);
+        let none = BTreeMap::new();
+        for (name, mode) in [("quick", ModeName::Quick), ("full", ModeName::Full)] {
+            let spec = study
+                .run_spec(Experiment::Repose, &none, &none, name)
+                .unwrap();
+            assert_eq!(dem.mode(&spec).unwrap(), mode);
+        }
+        let mut spec = study
+            .run_spec(Experiment::Repose, &none, &none, "quick")
+            .unwrap();
+        spec.mode.pods += 1;
+        assert!(dem.mode(&spec).unwrap_err().0.contains("no study mode"));
+    }
+}

@@ -72,3 +72,29 @@ pub fn parameter_values(spec: &RunSpec) -> BTreeMap<String, f64> {
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::study::{Experiment, Study};
+
+    #[test]
+    fn values_are_the_runs_settings_and_the_held_values() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../testdata/peanut-pods-saline/study.toml"
+        );
+        let study = Study::load(Path::new(path)).unwrap();
+        let set = BTreeMap::from([("pod-pod.static_friction".to_owned(), 0.854)]);
+        let spec = study
+            .run_spec(Experiment::Repose, &BTreeMap::new(), &set, "quick")
+            .unwrap();
+        let v = parameter_values(&spec);
+        assert_eq!(v.len(), REGISTRY.len());
+        assert_eq!(v["pod-pod.static_friction"], 0.854);
+        // Seed 000 §3.4's held values: the study's values or the ranges' centres.
+        assert_eq!(v["pod.poisson"], 0.386);
+        assert_eq!(v["pod-steel.static_friction"], 0.589);
+        assert!((v["pod-pod.restitution"] - 0.340).abs() < 1e-12);
+    }
+}
