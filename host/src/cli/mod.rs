@@ -3,6 +3,7 @@
 //! Every subcommand returns `anyhow::Result`; `main` prints the error chain and exits with
 //! status 2, so bad input is always a clear message and never a panic.
 
+pub mod calibrate;
 pub mod compare;
 pub mod diagnose;
 pub mod doe;
@@ -50,6 +51,8 @@ pub enum Command {
     /// Run one virtual bench experiment of a study (repose, plate_drop, incline_slide,
     /// rolling, compression).
     Simulate(simulate::Args),
+    /// Calibrate a study end to end: screen, steepest ascent, Box–Behnken, optimise, validate.
+    Calibrate(calibrate::Args),
 }
 
 impl Cli {
@@ -66,6 +69,7 @@ impl Cli {
             Command::Fit(args) => fit::run(args),
             Command::Synth(args) => synth::run(args),
             Command::Simulate(args) => simulate::run(args),
+            Command::Calibrate(args) => calibrate::run(args),
         }
     }
 }

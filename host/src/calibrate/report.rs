@@ -1,0 +1,361 @@
+//! The report folder: `calibration.json` (every number), `report.md` (the story with
+//! tables) and `figures/*.svg`. Every file is written atomically (`io::write_atomic`), the
+//! JSON last, so a folder with a `calibration.json` is complete. Nothing here depends on
+//! time, paths or thread count: the same calibration writes the same bytes.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use super::figures;
+use super::{CalibrateError, Calibration, Runner};
+use crate::io::write_string_atomic;
+use crate::stats::report::{format_number, format_p, text_report};
+
+/// Folder of the figures inside the output folder.
+pub const FIGURES_DIR: &str = "figures";
+/// The JSON file name.
+pub const JSON_FILE: &str = "calibration.json";
+/// The report file name.
+pub const REPORT_FILE: &str = "report.md";
+
+fn write(path: &Path, text: &str) -> Result<(), CalibrateError> {
+    write_string_atomic(path, text).map_err(|e| CalibrateError::Io {
+        path: path.to_owned(),
+        reason: format!("{e:#}"),
+    })
+}
+
+fn figure(path: &Path, svg: Result<String, String>) -> Result<(), CalibrateError> {
+    let svg = svg.map_err(|reason| CalibrateError::Io {
+        path: path.to_owned(),
+        reason,
+    })?;
+    write(path, &svg)
+}
+
+/// Writes the figures, `report.md` and `calibration.json` into `out`.
+pub fn write_all(
+    runner: &Runner<'_>,
+    calibration: &Calibration,
+    out: &Path,
+) -> Result<(), CalibrateError> {
+    let figures_dir = out.join(FIGURES_DIR);
+    std::fs::create_dir_all(&figures_dir).map_err(|e| CalibrateError::Io {
+        path: figures_dir.clone(),
+        reason: e.to_string(),
+    })?;
+    for dir in [out, figures_dir.as_path()] {
+        super::run_cache::remove_stale_temporaries(dir).map_err(|e| CalibrateError::Io {
+            path: dir.to_owned(),
+            reason: e.to_string(),
+        })?;
+    }
+    let unit = &calibration.target.unit;
+    let mut figure_names = Vec::new();
+    figure(
+        &figures_dir.join("pareto.svg"),
+        figures::pareto(&calibration.screening, unit),
+    )?;
+    let bbd = &calibration.box_behnken;
+    for (i, j) in figures::surface_pairs(bbd) {
+        let name = format!(
+            "surface_{}_{}.svg",
+            bbd.factors[i].label, bbd.factors[j].label
+        );
+        figure(
+            &figures_dir.join(&name),
+            figures::surface_map(
+                bbd,
+                i,
+                j,
+                &calibration.optimum.coded,
+                calibration.target.value,
+                unit,
+            ),
+        )?;
+        figure_names.push(name);
+    }
+    let v = &calibration.validation;
+    figure(
+        &figures_dir.join("pile.svg"),
+        figures::pile_profiles(v.measured, v.simulated),
+    )?;
+    // The simulator's own picture of the validation pile, when it can draw one.
+    let study = runner.study();
+    let m = study.validation();
+    let planned = super::PlannedRun {
+        coded: calibration.optimum.coded.clone(),
+        values: calibration.optimum.actual.clone(),
+        replicate: 0,
+    };
+    let spec = runner.spec(
+        super::validation::STAGE,
+        0,
+        m.experiment,
+        &m.condition,
+        &planned,
+    )?;
+    let picture = runner
+        .simulator()
+        .pile_picture(&spec, &figures_dir)
+        .map_err(|e| CalibrateError::Io {
+            path: figures_dir.clone(),
+            reason: format!("the simulator could not draw the pile: {e}"),
+        })?
+        .and_then(|p| {
+            p.strip_prefix(out)
+                .ok()
+                .map(|r| r.to_string_lossy().into_owned())
+        });
+    write(
+        &out.join(REPORT_FILE),
+        &markdown(calibration, &figure_names, picture.as_deref()),
+    )?;
+    let json = serde_json::to_string_pretty(calibration).expect("a calibration serialises");
+    write(&out.join(JSON_FILE), &(json + "\n"))
+}
+
+/// The Markdown report.
+pub fn markdown(c: &Calibration, surfaces: &[String], picture: Option<&str>) -> String {
+    let mut s = String::new();
+    let unit = &c.target.unit;
+    let _ = writeln!(s, "# Calibration of `{}`\n", c.study);
+    let _ = writeln!(
+        s,
+        "- Simulator: {} (`{}`)",
+        c.simulator_description, c.simulator
+    );
+    let _ = writeln!(s, "- Mode: `{}`", c.mode);
+    let _ = writeln!(
+        s,
+        "- Target: {} {} = {} {unit} (measured mean)",
+        c.target.experiment, c.target.quantity, c.target.value
+    );
+    let v = &c.validation;
+    let _ = writeln!(
+        s,
+        "- Result: simulated {} {unit} at the optimum, relative error ψ = {:.3} % (limit {} %): **{}**\n",
+        format_number(v.simulated),
+        v.relative_error_pct,
+        v.max_relative_error_pct,
+        if v.passed { "passed" } else { "FAILED" }
+    );
+
+    let sc = &c.screening;
+    let _ = writeln!(s, "## 1. Screening ({}, seed 000 §3.3)\n", sc.design);
+    let _ = writeln!(
+        s,
+        "{} runs; dummy columns {} left out of the model as the error estimate; α = {}.\n",
+        sc.runs.len(),
+        if sc.dummy_columns.is_empty() {
+            "none".to_owned()
+        } else {
+            sc.dummy_columns.join(", ")
+        },
+        sc.significance
+    );
+    let _ = writeln!(
+        s,
+        "| factor | parameter | low | high | effect ({unit}) | p | significant |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|");
+    for (f, e) in sc.factors.iter().zip(&sc.effects) {
+        let _ = writeln!(
+            s,
+            "| {} | {} ({}) | {} | {} | {} | {} | {} |",
+            f.label,
+            f.name,
+            f.unit,
+            f.low,
+            f.high,
+            format_number(e.effect),
+            e.p.map_or("–".to_owned(), format_p),
+            if e.significant { "yes" } else { "no" }
+        );
+    }
+    let strongest = sc
+        .strongest()
+        .map_or("–".to_owned(), |e| format!("{} ({})", e.label, e.name));
+    let _ = writeln!(
+        s,
+        "\nMost significant factor: **{strongest}**. Significant: {}. Carried on: {}.\n",
+        if sc.significant.is_empty() {
+            "none".to_owned()
+        } else {
+            sc.significant.join(", ")
+        },
+        sc.selected.join(", ")
+    );
+    for note in &sc.notes {
+        let _ = writeln!(s, "> Note: {note}\n");
+    }
+    if let Some(why) = &sc.anova_unavailable {
+        let _ = writeln!(s, "> No ANOVA: {why}\n");
+    }
+    let _ = writeln!(
+        s,
+        "![Pareto chart of screening effects]({FIGURES_DIR}/pareto.svg)\n"
+    );
+    if let Some(a) = &sc.anova {
+        let _ = writeln!(s, "```text\n{}```\n", text_report(a, unit));
+    }
+    runs_table(&mut s, "Screening runs", &sc.runs, unit);
+
+    let p = &c.steepest_ascent;
+    let _ = writeln!(
+        s,
+        "## 2. Path of steepest {} (seed 000 §3.4)\n",
+        p.direction
+    );
+    let _ =
+        writeln!(
+        s,
+        "Factors {} move along the screening gradient (coded coefficients {}); the rest are held. \
+         The screening fit predicts {} {unit} at the start.\n",
+        p.factors.iter().map(|f| f.label.as_str()).collect::<Vec<_>>().join(", "),
+        p.coefficients.iter().map(|b| format_number(*b)).collect::<Vec<_>>().join(", "),
+        format_number(p.predicted_at_origin)
+    );
+    let _ = write!(s, "| point |");
+    for f in &p.factors {
+        let _ = write!(s, " {} |", f.label);
+    }
+    let _ = writeln!(s, " response ({unit}) | ψ (%) |");
+    let _ = writeln!(s, "|{}", "---|".repeat(p.factors.len() + 3));
+    for (r, e) in p.runs.iter().zip(&p.relative_error_pct) {
+        let _ = write!(
+            s,
+            "| {}{} |",
+            r.run,
+            if r.run == p.best { " (best)" } else { "" }
+        );
+        for f in &p.factors {
+            let _ = write!(s, " {} |", fmt_value(r.actual[&f.name]));
+        }
+        let _ = writeln!(s, " {} | {:.2} |", format_number(r.response), e);
+    }
+    let _ = writeln!(s);
+    for note in &p.notes {
+        let _ = writeln!(s, "> Note: {note}\n");
+    }
+
+    let b = &c.box_behnken;
+    let _ = writeln!(
+        s,
+        "## 3. Box–Behnken design and {} fit (seed 000 §3.5)\n",
+        b.model
+    );
+    let _ = writeln!(
+        s,
+        "Box: {}. {} runs, {} centre points.\n",
+        b.range_rule,
+        b.runs.len(),
+        b.centre_points
+    );
+    let _ = writeln!(s, "| factor | parameter | −1 | +1 |");
+    let _ = writeln!(s, "|---|---|---|---|");
+    for f in &b.factors {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} |",
+            f.label,
+            f.name,
+            fmt_value(f.low),
+            fmt_value(f.high)
+        );
+    }
+    let _ = writeln!(s, "\n```text\n{}```\n", text_report(&b.anova, unit));
+    for name in surfaces {
+        let _ = writeln!(s, "![Response surface]({FIGURES_DIR}/{name})\n");
+    }
+    runs_table(&mut s, "Box–Behnken runs", &b.runs, unit);
+
+    let o = &c.optimum;
+    let _ = writeln!(s, "## 4. Optimum (desirability, seed 000 §3.6.1)\n");
+    let _ = writeln!(
+        s,
+        "Goal: {} = {} {unit}, desirability falling to 0 at {} and {}. Chosen: D = {:.6}, \
+         predicted {} {unit} ({} distinct solutions found; the one nearest the box centre among the best).\n",
+        c.target.quantity,
+        o.goal.target,
+        format_number(o.goal.low),
+        format_number(o.goal.high),
+        o.desirability,
+        format_number(o.predicted),
+        o.solutions_found
+    );
+    let _ = writeln!(
+        s,
+        "| factor | parameter | unit | value | role | study range |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|");
+    for r in &o.parameters {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {} – {} |",
+            r.label,
+            r.name,
+            r.unit,
+            fmt_value(r.value),
+            r.role,
+            r.low,
+            r.high
+        );
+    }
+
+    let _ = writeln!(s, "\n## 5. Validation (seed 000 eq. (21), §3.6.2)\n");
+    let _ = writeln!(
+        s,
+        "Measured {} {unit}; simulated {} ± {} {unit} (mean ± SD of {} replicates; surface \
+         predicted {}); ψ = {:.3} % against the limit {} %: **{}**.\n",
+        v.measured,
+        format_number(v.simulated),
+        format_number(v.simulated_sd),
+        v.runs.len(),
+        format_number(v.predicted),
+        v.relative_error_pct,
+        v.max_relative_error_pct,
+        if v.passed { "passed" } else { "FAILED" },
+    );
+    runs_table(&mut s, "Validation runs", &v.runs, unit);
+    let _ = writeln!(s, "![Measured vs simulated pile]({FIGURES_DIR}/pile.svg)\n");
+    if let Some(pic) = picture {
+        let _ = writeln!(s, "![Simulated pile at the optimum]({pic})\n");
+    }
+    s
+}
+
+/// Four significant digits past the leading ones, without float noise (0.8540, 3.04e6).
+fn fmt_value(v: f64) -> String {
+    if v != 0.0 && (v.abs() >= 1e4 || v.abs() < 1e-3) {
+        format!("{v:.4e}")
+    } else {
+        format!("{v:.4}")
+    }
+}
+
+fn runs_table(s: &mut String, title: &str, runs: &[super::RunRecord], unit: &str) {
+    let Some(first) = runs.first() else { return };
+    let names: Vec<&String> = first.actual.keys().collect();
+    let _ = writeln!(s, "<details><summary>{title}</summary>\n");
+    let _ = write!(s, "| run |");
+    for n in &names {
+        let _ = write!(s, " {n} |");
+    }
+    let _ = writeln!(s, " replicate | response ({unit}) | spec |");
+    let _ = writeln!(s, "|{}", "---|".repeat(names.len() + 4));
+    for r in runs {
+        let _ = write!(s, "| {} |", r.run);
+        for n in &names {
+            let _ = write!(s, " {} |", fmt_value(r.actual[*n]));
+        }
+        let _ = writeln!(
+            s,
+            " {} | {} | `{}` |",
+            r.replicate,
+            format_number(r.response),
+            r.spec_hash
+        );
+    }
+    let _ = writeln!(s, "\n</details>\n");
+}
