@@ -45,16 +45,7 @@ pub struct Args {
 
 /// Runs `arachis plant-calibrate`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    ensure!(
-        args.speed.is_finite() && args.speed > 0.0,
-        "--speed must be a positive number of m/s, got {}",
-        args.speed
-    );
-    ensure!(
-        args.angle.is_finite() && args.angle.abs() <= 90.0,
-        "--angle must be between -90 and 90 degrees, got {}",
-        args.angle
-    );
+    super::pulloff::check_pull(args.speed, args.angle)?;
     ensure!(args.jobs != Some(0), "--jobs must be at least 1");
     let sim = PullOffSimulator {
         base: PullOff {

@@ -125,18 +125,22 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Refuses a `--speed` (m/s) that is not positive or an `--angle` (degrees) beyond ±90.
+pub fn check_pull(speed_m_s: f64, angle_deg: f64) -> anyhow::Result<()> {
+    ensure!(
+        speed_m_s.is_finite() && speed_m_s > 0.0,
+        "--speed must be a positive number of m/s, got {speed_m_s}"
+    );
+    ensure!(
+        angle_deg.is_finite() && angle_deg.abs() <= 90.0,
+        "--angle must be between -90 and 90 degrees, got {angle_deg}"
+    );
+    Ok(())
+}
+
 /// The scenario the arguments describe; bad numbers are refused here with the flag's name.
 fn scenario(args: &Args) -> anyhow::Result<PullOff> {
-    ensure!(
-        args.speed.is_finite() && args.speed > 0.0,
-        "--speed must be a positive number of m/s, got {}",
-        args.speed
-    );
-    ensure!(
-        args.angle.is_finite() && args.angle.abs() <= 90.0,
-        "--angle must be between -90 and 90 degrees, got {}",
-        args.angle
-    );
+    check_pull(args.speed, args.angle)?;
     ensure!(
         args.stalk_spheres >= 2,
         "--stalk-spheres must be at least 2 (one clamped, one free), got {}",

@@ -5,7 +5,8 @@
 //! Derringer–Suich desirability with the target force T: d = 1 at T, falling linearly to 0
 //! at T ± w, w the largest |F − T| of the design's runs (`optimize::optimise_desirability`,
 //! multi-start Nelder–Mead over the box ±α). Among the solutions within
-//! [`DESIRABILITY_TIE`] of the best the one nearest the design centre is taken, where the
+//! [`crate::calibrate::optimum::DESIRABILITY_TIE`] of the best the one nearest the design centre is taken
+//! (`calibrate::optimum::most_central_best`, shared with seed 000's plan), where the
 //! fit is best supported. The optimum is then pulled again; the relative error
 //! ψ = |F − T|/T × 100 % must be at most [`MAX_RELATIVE_ERROR_PCT`] (issue 6).
 
@@ -15,13 +16,12 @@ use super::ccd::CentralComposite;
 use super::path::settings_with;
 use super::simulator::PullOffSimulator;
 use super::PlantCalibrationError;
+use crate::calibrate::optimum::most_central_best;
 use crate::optimize::{optimise_desirability, Goal, GoalKind, SearchOptions};
 use crate::stats::relative_error_percent;
 
 /// Distinct solutions the search lists.
 const SOLUTIONS: usize = 20;
-/// Solutions whose desirability is within this of the best count as equally good.
-pub const DESIRABILITY_TIE: f64 = 1e-6;
 /// The pass mark of the validation, % (issue 6: "within 5 % of the target").
 pub const MAX_RELATIVE_ERROR_PCT: f64 = 5.0;
 
@@ -74,17 +74,11 @@ pub fn run(
         k,
         &SearchOptions::for_solutions(SOLUTIONS),
     )?;
-    let best = found.first().map(|s| s.desirability).ok_or_else(|| {
+    let chosen = most_central_best(&found).ok_or_else(|| {
         PlantCalibrationError::Plan(format!(
             "the fitted surface never comes within {w} N of the target {t} N inside ±α"
         ))
     })?;
-    let norm = |x: &[f64]| x.iter().map(|v| v * v).sum::<f64>();
-    let chosen = found
-        .iter()
-        .filter(|s| s.desirability >= best - DESIRABILITY_TIE)
-        .min_by(|p, q| norm(&p.coded).total_cmp(&norm(&q.coded)))
-        .expect("the best solution qualifies");
     let coded: Vec<f64> = chosen.coded.iter().map(|u| u * a).collect();
     let values: Vec<f64> = ccd
         .factors

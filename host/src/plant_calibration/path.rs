@@ -66,15 +66,6 @@ impl SteepestPath {
     }
 }
 
-/// +1 for non-negative, −1 for negative.
-fn sign(v: f64) -> f64 {
-    if v < 0.0 {
-        -1.0
-    } else {
-        1.0
-    }
-}
-
 /// The nine settings with the carried factors (`labels`) at `values`, others at centre.
 pub fn settings_with(labels: &[String], values: &[f64]) -> [f64; 9] {
     core::array::from_fn(|j| {
@@ -100,7 +91,7 @@ pub fn run(
     let lowest = screening.intercept - b.iter().map(|v| v.abs()).sum::<f64>();
     let ascend = target_n >= lowest;
     let g: Vec<f64> = b.iter().map(|v| if ascend { *v } else { -v }).collect();
-    let origin: Vec<f64> = g.iter().map(|v| -sign(*v)).collect();
+    let origin: Vec<f64> = g.iter().map(|v| -v.signum()).collect();
     let factors = labels
         .iter()
         .map(|l| by_label(l).expect("carried labels are Table 5's").factor())
