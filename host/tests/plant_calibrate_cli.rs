@@ -46,6 +46,9 @@ fn bad_input_is_a_clear_error() {
         (vec!["--angle", "120"], "--angle"),
         (vec!["--target", "-1"], "target detachment force"),
         (vec!["--jobs", "0"], "--jobs"),
+        (vec!["--carry", "x7,x7"], "given twice"),
+        (vec!["--carry", "x7"], "2 to 3 factors"),
+        (vec!["--carry", "x7,x10"], "unknown factor 'x10'"),
     ] {
         let mut all = vec!["plant-calibrate", "--out", o, "--quiet"];
         all.extend(args);

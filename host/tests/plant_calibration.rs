@@ -14,7 +14,7 @@ fn seed001_plan_calibrates_the_junction_to_the_target() {
     let sim = PullOffSimulator {
         base: PullOff::default(),
     };
-    let cal = calibrate(&sim, TARGET_DETACHMENT_N, &Progress::hidden()).unwrap();
+    let cal = calibrate(&sim, TARGET_DETACHMENT_N, None, &Progress::hidden()).unwrap();
     let o = &cal.optimum;
 
     // The must-show: the validation pull at the optimum within 5 % of 7.18 N.
@@ -78,4 +78,34 @@ fn seed001_plan_calibrates_the_junction_to_the_target() {
     for heading in ["## 1.", "## 2.", "## 3.", "## 4."] {
         assert!(md.contains(heading), "{md}");
     }
+}
+
+/// Seed 001 carried x7 and x8 (Table 7's **); forced onto the same path the plan still
+/// reaches the target, through x8 alone: x7 moves but does not act in an axial pull.
+#[test]
+fn seed001_carried_factors_also_reach_the_target() {
+    let sim = PullOffSimulator {
+        base: PullOff::default(),
+    };
+    let carry = ["x7".to_owned(), "x8".to_owned()];
+    let cal = calibrate(&sim, TARGET_DETACHMENT_N, Some(&carry), &Progress::hidden()).unwrap();
+    assert_eq!(cal.screening.carried, carry);
+    assert!(cal.optimum.passed, "{} %", cal.optimum.relative_error_pct);
+    let ccd = &cal.central_composite.anova;
+    let p = |name: &str| ccd.terms.iter().find(|t| t.name == name).unwrap().p;
+    assert!(p("x8") < 0.01, "x8 p {}", p("x8"));
+    // x7's coded coefficient is below 0.1 % of x8's over the design.
+    let b = |name: &str| {
+        ccd.coefficients
+            .iter()
+            .find(|c| c.term == name)
+            .unwrap()
+            .estimate
+    };
+    assert!(
+        b("x7").abs() < 1e-3 * b("x8").abs(),
+        "x7 {} x8 {}",
+        b("x7"),
+        b("x8")
+    );
 }

@@ -7,7 +7,7 @@
 //!
 //! ```text
 //! arachis plant-calibrate --out DIR [--target 7.18] [--speed 0.1] [--angle 0]
-//!                         [--jobs N] [--quiet]
+//!                         [--carry x7,x8] [--jobs N] [--quiet]
 //! ```
 
 use std::path::PathBuf;
@@ -35,6 +35,10 @@ pub struct Args {
     /// Pull direction from the stalk axis, degrees (0 = axial, the texture analyser).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub angle: f64,
+    /// Carry these factors (comma-separated, e.g. `x7,x8` as seed 001 did) to the path and
+    /// the response surface instead of the screening's choice.
+    #[arg(long, value_delimiter = ',')]
+    pub carry: Option<Vec<String>>,
     /// Worker threads (default: every core).
     #[arg(long)]
     pub jobs: Option<usize>,
@@ -61,7 +65,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let pool = pool.build().context("cannot start the worker threads")?;
     let started = Instant::now();
-    let cal = pool.install(|| calibrate(&sim, args.target, &progress))?;
+    let cal = pool.install(|| calibrate(&sim, args.target, args.carry.as_deref(), &progress))?;
     let wall = started.elapsed().as_secs_f64();
     report::write_all(&cal, wall, &args.out)
         .with_context(|| format!("cannot write the report into {}", args.out.display()))?;

@@ -107,10 +107,13 @@ pub struct PlantCalibration {
     pub axial_check_max_deviation_pct: f64,
 }
 
-/// Runs seed 001's plan on `sim` toward `target_n` (N).
+/// Runs seed 001's plan on `sim` toward `target_n` (N). `carry` overrides the screening's
+/// choice of factors for the path and the response surface (e.g. seed 001's x7, x8; 2 or 3
+/// distinct Table 5 labels); the report says so.
 pub fn calibrate(
     sim: &PullOffSimulator,
     target_n: f64,
+    carry: Option<&[String]>,
     progress: &Progress,
 ) -> Result<PlantCalibration, PlantCalibrationError> {
     if !(target_n.is_finite() && target_n > 0.0) {
@@ -118,7 +121,18 @@ pub fn calibrate(
             "the target detachment force must be a positive number of N, got {target_n}"
         )));
     }
-    let screening = screening::run(sim, progress)?;
+    if let Some(c) = carry {
+        check_carry(c)?;
+    }
+    let mut screening = screening::run(sim, progress)?;
+    if let Some(c) = carry {
+        screening.notes.push(format!(
+            "carried as asked: {} (the screening chose {})",
+            c.join(", "),
+            screening.carried.join(", ")
+        ));
+        screening.carried = c.to_vec();
+    }
     let path = path::run(sim, &screening, target_n, progress)?;
     let central_composite = ccd::run(sim, &path, progress)?;
     let optimum = optimum::run(sim, &central_composite, target_n)?;
@@ -148,4 +162,30 @@ pub fn calibrate(
         central_composite,
         optimum,
     })
+}
+
+/// Refuses a `carry` list that is not 2 or 3 distinct Table 5 labels.
+fn check_carry(carry: &[String]) -> Result<(), PlantCalibrationError> {
+    let range = screening::MIN_CARRIED..=screening::MAX_CARRIED;
+    if !range.contains(&carry.len()) {
+        return Err(PlantCalibrationError::Plan(format!(
+            "--carry takes {} to {} factors (the central composite stage), got {}",
+            range.start(),
+            range.end(),
+            carry.len()
+        )));
+    }
+    for (i, l) in carry.iter().enumerate() {
+        if factors::by_label(l).is_none() {
+            return Err(PlantCalibrationError::Plan(format!(
+                "unknown factor '{l}' (seed 001 Table 5 has x1…x9)"
+            )));
+        }
+        if carry[..i].contains(l) {
+            return Err(PlantCalibrationError::Plan(format!(
+                "factor '{l}' given twice"
+            )));
+        }
+    }
+    Ok(())
 }
