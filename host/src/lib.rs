@@ -13,6 +13,7 @@ pub mod io;
 pub mod lab;
 pub mod optimize;
 pub mod plant;
+pub mod plant_calibration;
 pub mod repose;
 pub mod shapes;
 pub mod stats;

@@ -123,6 +123,10 @@ pub struct PullOff {
     pub junction: BondSetSpec,
     /// Stalk (stalk–stalk) bond set.
     pub stalk: BondSetSpec,
+    /// Unbonded stalk–stalk contact (default [`STALK_CONTACT`]).
+    pub stalk_contact: PairSpec,
+    /// Unbonded stalk–pod and pod–pod contact (default [`POD_CONTACT`]).
+    pub pod_contact: PairSpec,
 }
 
 impl Default for PullOff {
@@ -147,6 +151,8 @@ impl Default for PullOff {
                 r_stalk_m,
                 STALK_MAX_TENSILE_N / stalk_area_m2,
             ),
+            stalk_contact: STALK_CONTACT,
+            pod_contact: POD_CONTACT,
         }
     }
 }
@@ -208,9 +214,9 @@ impl PullOff {
         w.attach_bond_storage(bonds)?;
         let stalk = w.add_material(STALK_MATERIAL)?;
         let pod = w.add_material(POD_MATERIAL)?;
-        w.set_pair(stalk, stalk, STALK_CONTACT)?;
-        w.set_pair(stalk, pod, POD_CONTACT)?;
-        w.set_pair(pod, pod, POD_CONTACT)?;
+        w.set_pair(stalk, stalk, self.stalk_contact)?;
+        w.set_pair(stalk, pod, self.pod_contact)?;
+        w.set_pair(pod, pod, self.pod_contact)?;
         w.set_gravity_m_s2(super::materials::GRAVITY_M_S2)?;
         let rs = STALK_DIAMETER_MM / 2.0;
         let pitch = 2.0 * rs + SETUP_GAP_MM;

@@ -18,7 +18,7 @@ use serde::Serialize;
 use super::box_behnken::BoxBehnkenStage;
 use super::screening::Screening;
 use super::{CalibrateError, Runner, TargetInfo};
-use crate::optimize::{optimise_desirability, Goal, GoalKind, SearchOptions};
+use crate::optimize::{optimise_desirability, DesirableSolution, Goal, GoalKind, SearchOptions};
 use crate::study::parameters::lookup;
 
 /// Distinct solutions the search lists (it starts from four times as many points).
@@ -77,6 +77,17 @@ pub struct Optimum {
     pub parameters: Vec<ParameterRow>,
 }
 
+/// Among the solutions within [`DESIRABILITY_TIE`] of the best, the one nearest the box
+/// centre (`None` when there is none).
+pub fn most_central_best(found: &[DesirableSolution]) -> Option<&DesirableSolution> {
+    let best = found.first()?.desirability;
+    let norm = |x: &[f64]| x.iter().map(|v| v * v).sum::<f64>();
+    found
+        .iter()
+        .filter(|s| s.desirability >= best - DESIRABILITY_TIE)
+        .min_by(|a, b| norm(&a.coded).total_cmp(&norm(&b.coded)))
+}
+
 /// Runs stage 4.
 pub fn run(
     runner: &Runner<'_>,
@@ -101,18 +112,12 @@ pub fn run(
             &SearchOptions::for_solutions(SOLUTIONS),
         )
     })?;
-    let best_d = found.first().map(|s| s.desirability).ok_or_else(|| {
+    let chosen = most_central_best(&found).ok_or_else(|| {
         CalibrateError::Plan(format!(
             "the fitted surface never comes within {w} of the target {t} inside the \
                  Box–Behnken box"
         ))
     })?;
-    let norm = |x: &[f64]| x.iter().map(|v| v * v).sum::<f64>();
-    let chosen = found
-        .iter()
-        .filter(|s| s.desirability >= best_d - DESIRABILITY_TIE)
-        .min_by(|a, b| norm(&a.coded).total_cmp(&norm(&b.coded)))
-        .expect("the best solution qualifies");
     let actual: BTreeMap<String, f64> = bbd
         .factors
         .iter()

@@ -10,6 +10,7 @@ pub mod doe;
 pub mod fit;
 pub mod lab;
 pub mod lab_repose;
+pub mod plant_calibrate;
 pub mod pour;
 pub mod pulloff;
 pub mod simulate;
@@ -53,6 +54,8 @@ pub enum Command {
     Simulate(simulate::Args),
     /// Calibrate a study end to end: screen, steepest ascent, Box–Behnken, optimise, validate.
     Calibrate(calibrate::Args),
+    /// Calibrate the pod–stalk junction bond on the tensile test (seed 001's plan).
+    PlantCalibrate(plant_calibrate::Args),
 }
 
 impl Cli {
@@ -70,6 +73,7 @@ impl Cli {
             Command::Synth(args) => synth::run(args),
             Command::Simulate(args) => simulate::run(args),
             Command::Calibrate(args) => calibrate::run(args),
+            Command::PlantCalibrate(args) => plant_calibrate::run(args),
         }
     }
 }

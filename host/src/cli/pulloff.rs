@@ -19,7 +19,6 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{ensure, Context};
-use arachis_core::bond::{Bond, BondBreak, BondStorage};
 use arachis_core::prelude::*;
 use arachis_core::scenario::pull_off::{self, PullOff};
 use arachis_core::units::{LENGTH_M_TO_MM, VELOCITY_M_S_TO_MM_MS};
@@ -27,6 +26,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use crate::io::write_atomic;
+use crate::plant_calibration::PullOffArenas;
 use crate::vtk::{write_series, ParticleFrame};
 
 /// Steps between VTK frames by default with `--vtk` (the default run breaks after about
@@ -125,18 +125,22 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Refuses a `--speed` (m/s) that is not positive or an `--angle` (degrees) beyond ±90.
+pub fn check_pull(speed_m_s: f64, angle_deg: f64) -> anyhow::Result<()> {
+    ensure!(
+        speed_m_s.is_finite() && speed_m_s > 0.0,
+        "--speed must be a positive number of m/s, got {speed_m_s}"
+    );
+    ensure!(
+        angle_deg.is_finite() && angle_deg.abs() <= 90.0,
+        "--angle must be between -90 and 90 degrees, got {angle_deg}"
+    );
+    Ok(())
+}
+
 /// The scenario the arguments describe; bad numbers are refused here with the flag's name.
 fn scenario(args: &Args) -> anyhow::Result<PullOff> {
-    ensure!(
-        args.speed.is_finite() && args.speed > 0.0,
-        "--speed must be a positive number of m/s, got {}",
-        args.speed
-    );
-    ensure!(
-        args.angle.is_finite() && args.angle.abs() <= 90.0,
-        "--angle must be between -90 and 90 degrees, got {}",
-        args.angle
-    );
+    check_pull(args.speed, args.angle)?;
     ensure!(
         args.stalk_spheres >= 2,
         "--stalk-spheres must be at least 2 (one clamped, one free), got {}",
@@ -175,31 +179,6 @@ fn scenario(args: &Args) -> anyhow::Result<PullOff> {
     Ok(s)
 }
 
-/// Owned arenas (the core never allocates).
-struct Arenas<S: Scalar> {
-    bodies: Vec<Body<S>>,
-    spheres: Vec<Sphere<S>>,
-    contacts: Vec<ContactSlot<S>>,
-    index: Vec<u32>,
-    cells: Vec<u32>,
-    bonds: Vec<Bond<S>>,
-    log: Vec<BondBreak<S>>,
-}
-
-impl<S: Scalar> Arenas<S> {
-    fn new(l: StorageLengths, bonds: usize) -> Self {
-        Arenas {
-            bodies: vec![Body::default(); l.bodies],
-            spheres: vec![Sphere::default(); l.spheres],
-            contacts: vec![ContactSlot::default(); l.contacts],
-            index: vec![0; l.sphere_index],
-            cells: vec![0; l.cells],
-            bonds: vec![Bond::default(); bonds],
-            log: vec![BondBreak::default(); bonds],
-        }
-    }
-}
-
 /// The spheres as a VTK frame, SI units (sphere velocity: v + ω × offset of its body).
 fn capture<S: Scalar>(world: &World<'_, S>) -> ParticleFrame {
     let bodies = world.bodies();
@@ -225,22 +204,10 @@ fn capture<S: Scalar>(world: &World<'_, S>) -> ParticleFrame {
 type Outcome = (Report, Vec<(f64, f64)>, Vec<ParticleFrame>);
 
 fn pull<S: Scalar>(args: &Args, scenario: &PullOff) -> anyhow::Result<Outcome> {
-    let mut a = Arenas::<S>::new(scenario.storage_lengths(), scenario.bond_capacity());
+    let mut a = PullOffArenas::<S>::new(scenario);
     let started = Instant::now();
-    let mut world = scenario
-        .build(
-            Storage {
-                bodies: &mut a.bodies,
-                spheres: &mut a.spheres,
-                contacts: &mut a.contacts,
-                sphere_index: &mut a.index,
-                cells: &mut a.cells,
-            },
-            BondStorage {
-                bonds: &mut a.bonds,
-                log: &mut a.log,
-            },
-        )
+    let mut world = a
+        .world(scenario)
         .context("cannot set up the pull-off test")?;
     let bar = ProgressBar::new(args.max_steps);
     if let Ok(style) = ProgressStyle::with_template("pulloff {bar:40} {pos}/{len} steps  {msg}") {

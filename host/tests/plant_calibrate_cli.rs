@@ -1,0 +1,61 @@
+//! `arachis plant-calibrate` from the command line: report files, the summary line, and
+//! bad input as clear errors (exit status 2, no report written).
+
+use std::process::{Command, Output};
+
+fn arachis(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_arachis"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn writes_the_report_and_prints_the_validation() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("cal");
+    let o = arachis(&[
+        "plant-calibrate",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+        "--jobs",
+        "2",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let line: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(line["passed"], true);
+    assert!(line["relative_error_pct"].as_f64().unwrap() <= 5.0);
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("plant-calibration.json")).unwrap())
+            .unwrap();
+    assert_eq!(json["format"], "arachis-plant-calibration-1");
+    assert_eq!(json["optimum"]["validated_n"], line["validated_n"]);
+    assert!(json["wall_seconds"].as_f64().unwrap() > 0.0);
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(md.contains("passed"), "{md}");
+}
+
+#[test]
+fn bad_input_is_a_clear_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("cal");
+    let o = out.to_str().unwrap();
+    for (args, says) in [
+        (vec!["--speed", "0"], "--speed"),
+        (vec!["--angle", "120"], "--angle"),
+        (vec!["--target", "-1"], "target detachment force"),
+        (vec!["--jobs", "0"], "--jobs"),
+        (vec!["--carry", "x7,x7"], "given twice"),
+        (vec!["--carry", "x7"], "2 to 3 factors"),
+        (vec!["--carry", "x7,x10"], "unknown factor 'x10'"),
+    ] {
+        let mut all = vec!["plant-calibrate", "--out", o, "--quiet"];
+        all.extend(args);
+        let r = arachis(&all);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(2), "{all:?}: {err}");
+        assert!(err.contains(says), "{all:?}: {err}");
+        assert!(!out.join("plant-calibration.json").exists());
+    }
+}
