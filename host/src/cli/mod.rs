@@ -8,6 +8,7 @@ pub mod compare;
 pub mod diagnose;
 pub mod doe;
 pub mod fit;
+pub mod harvest;
 pub mod lab;
 pub mod lab_repose;
 pub mod pour;
@@ -53,6 +54,9 @@ pub enum Command {
     Simulate(simulate::Args),
     /// Calibrate a study end to end: screen, steepest ascent, Box–Behnken, optimise, validate.
     Calibrate(calibrate::Args),
+    /// Virtual harvest: plants through a toothed picking drum; loss rate and t-test against
+    /// the field (seed 001 Table 12).
+    Harvest(harvest::Args),
 }
 
 impl Cli {
@@ -70,6 +74,7 @@ impl Cli {
             Command::Synth(args) => synth::run(args),
             Command::Simulate(args) => simulate::run(args),
             Command::Calibrate(args) => calibrate::run(args),
+            Command::Harvest(args) => harvest::run(args),
         }
     }
 }
