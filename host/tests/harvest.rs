@@ -1,8 +1,8 @@
 //! Virtual harvest (issue 6): loss accounting counts every pod once, a pass is deterministic
 //! (same layout → same bits; same seed → same report), bad input is a clear error, the t-test
 //! in the report equals an independent calculation, and `arachis harvest` runs end to end
-//! with VTK frames. Kept cheap: a 20–40 mm drum and a fast conveyor (each pass ≈ 0.1 s
-//! simulated, ≈ 1e5 steps of ≈ 60 spheres).
+//! with VTK frames. Kept cheap: a 20–40 mm drum and a 2 m/s conveyor (each pass ≈ 0.05 s
+//! simulated, ≈ 6e4 steps of ≈ 50 spheres; the file runs in ≈ 11 s release).
 
 use std::process::{Command, Output};
 
@@ -211,6 +211,11 @@ fn bad_input_is_a_clear_error() {
     let out = arachis(&["harvest", "--topology", topo.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("nowhere"));
+    let machine = dir.path().join("m.toml");
+    std::fs::write(&machine, "drum_speed_rpm = 500.0\ndrum_sped = 3.0\n").unwrap();
+    let out = arachis(&["harvest", "--machine", machine.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("drum_sped"));
 }
 
 #[test]

@@ -6,7 +6,7 @@
 //!
 //! ```text
 //! arachis harvest [--topology FILE] [--plants 4] [--replicates 4] [--seed 1]
-//!                 [--forward-speed 1.0] [--drum-rpm 500] [--tip-radius 0.15]
+//!                 [--machine FILE] [--forward-speed 1.0] [--drum-rpm 500] [--tip-radius 0.15]
 //!                 [--drum-length 0.12] [--teeth-per-ring 6] [--reach 0.03]
 //!                 [--field 4.01,3.83,4.04,3.42] [--f64] [--vtk DIR] [--frame-every 2000]
 //!                 [--output FILE]
@@ -51,24 +51,28 @@ pub struct Args {
     /// Seed of the first replicate (replicate r uses seed + r).
     #[arg(long, default_value_t = HarvestConfig::default().seed)]
     pub seed: u64,
-    /// Forward (clamp-conveyor) speed, m/s.
-    #[arg(long, default_value_t = Machine::default().forward_speed_m_s, allow_hyphen_values = true)]
-    pub forward_speed: f64,
-    /// Drum speed, r/min.
-    #[arg(long, default_value_t = Machine::default().drum_speed_rpm, allow_hyphen_values = true)]
-    pub drum_rpm: f64,
-    /// Radius of the tooth centres, m.
-    #[arg(long, default_value_t = Machine::default().tip_radius_m, allow_hyphen_values = true)]
-    pub tip_radius: f64,
-    /// Drum length, m.
-    #[arg(long, default_value_t = Machine::default().drum_length_m, allow_hyphen_values = true)]
-    pub drum_length: f64,
-    /// Teeth per ring.
-    #[arg(long, default_value_t = Machine::default().teeth_per_ring)]
-    pub teeth_per_ring: u32,
-    /// Height of the tooth circle's top above the stem root, m.
-    #[arg(long, default_value_t = Machine::default().reach_above_root_m, allow_hyphen_values = true)]
-    pub reach: f64,
+    /// Machine file (TOML, the fields of `arachis::harvest::Machine`; missing fields take
+    /// their defaults), e.g. testdata/peanut-plant/harvest-machine.toml. Flags override it.
+    #[arg(long, value_name = "FILE")]
+    pub machine: Option<PathBuf>,
+    /// Forward (clamp-conveyor) speed, m/s [default 1.0].
+    #[arg(long, allow_hyphen_values = true)]
+    pub forward_speed: Option<f64>,
+    /// Drum speed, r/min [default 500].
+    #[arg(long, allow_hyphen_values = true)]
+    pub drum_rpm: Option<f64>,
+    /// Radius of the tooth centres, m [default 0.15].
+    #[arg(long, allow_hyphen_values = true)]
+    pub tip_radius: Option<f64>,
+    /// Drum length, m [default 0.12].
+    #[arg(long, allow_hyphen_values = true)]
+    pub drum_length: Option<f64>,
+    /// Teeth per ring [default 6].
+    #[arg(long)]
+    pub teeth_per_ring: Option<u32>,
+    /// Height of the tooth circle's top above the stem root, m [default 0.03].
+    #[arg(long, allow_hyphen_values = true)]
+    pub reach: Option<f64>,
     /// Field loss rates to compare with, % (comma-separated; default seed 001 Table 12).
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub field: Option<Vec<f64>>,
@@ -108,7 +112,7 @@ struct Report<'a> {
     pods_per_plant: usize,
     loss_percent: Vec<f64>,
     field_loss_percent: &'a [f64],
-    relative_error_percent: Vec<f64>,
+    relative_error_percent: Vec<Option<f64>>,
     t_test: Option<TTestReport>,
     replicates: &'a [crate::harvest::Replicate],
     steps: u64,
@@ -127,16 +131,30 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     };
     let topology = Topology::from_toml(&text).context("bad plant topology")?;
     let model = generate(&topology).context("cannot generate the plant")?;
+    let mut machine = match &args.machine {
+        Some(p) => {
+            let text = std::fs::read_to_string(p)
+                .with_context(|| format!("cannot read the machine file {}", p.display()))?;
+            toml::from_str::<Machine>(&text)
+                .with_context(|| format!("bad machine file {}", p.display()))?
+        }
+        None => Machine::default(),
+    };
+    let set = |v: Option<f64>, into: &mut f64| {
+        if let Some(x) = v {
+            *into = x;
+        }
+    };
+    set(args.forward_speed, &mut machine.forward_speed_m_s);
+    set(args.drum_rpm, &mut machine.drum_speed_rpm);
+    set(args.tip_radius, &mut machine.tip_radius_m);
+    set(args.drum_length, &mut machine.drum_length_m);
+    set(args.reach, &mut machine.reach_above_root_m);
+    if let Some(n) = args.teeth_per_ring {
+        machine.teeth_per_ring = n;
+    }
     let config = HarvestConfig {
-        machine: Machine {
-            forward_speed_m_s: args.forward_speed,
-            drum_speed_rpm: args.drum_rpm,
-            tip_radius_m: args.tip_radius,
-            drum_length_m: args.drum_length,
-            teeth_per_ring: args.teeth_per_ring,
-            reach_above_root_m: args.reach,
-            ..Machine::default()
-        },
+        machine,
         plants: args.plants,
         replicates: args.replicates,
         seed: args.seed,
@@ -214,12 +232,11 @@ fn report<'a>(
 ) -> Report<'a> {
     let loss: Vec<f64> = outcome.replicates.iter().map(|r| r.loss_percent).collect();
     // Seed 001 Table 12 pairs replicate i of the simulation with field trial i and takes the
-    // simulation as the reference.
+    // simulation as the reference (undefined, null, for a simulated loss of zero).
     let rel = loss
         .iter()
         .zip(&config.field_loss_percent)
-        .filter(|(s, _)| **s != 0.0)
-        .map(|(s, f)| relative_error_percent(*f, *s))
+        .map(|(s, f)| (*s != 0.0).then(|| relative_error_percent(*f, *s)))
         .collect();
     Report {
         machine: config.machine,

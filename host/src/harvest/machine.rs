@@ -143,3 +143,16 @@ impl Machine {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shipped_machine_file_is_the_default() {
+        let text = include_str!("../../../testdata/peanut-plant/harvest-machine.toml");
+        let m: Machine = toml::from_str(text).unwrap();
+        assert_eq!(m, Machine::default());
+        m.check().unwrap();
+    }
+}
