@@ -99,12 +99,47 @@ fn same_layout_gives_the_same_bits() {
         drum_length_m: 0.02,
         ..cheap_machine()
     };
-    let a = run_pass::<Fx>(&machine, &model, &layout, None, &quiet).unwrap();
+    let a = run_pass::<Fx>(&machine, &model, &layout, Some(u64::MAX), &quiet).unwrap();
     let b = run_pass::<Fx>(&machine, &model, &layout, None, &quiet).unwrap();
-    assert_eq!(a.digest, b.digest);
+    assert_eq!(a.digest, b.digest, "taking frames must not change the run");
     assert_eq!(a.fates, b.fates);
     assert_eq!(a.steps, b.steps);
     assert_eq!(a.fates.len() as u32, pods_per_plant(&model));
+
+    // The machine moves as prescribed: the first tooth (the first sphere after the plant's)
+    // stays on the tip circle and has turned by ω·t; the clamp (top stem sphere) has moved
+    // by v·t. Tolerances: 1e-6 m on the radius and 1e-4 rad on the angle (Q32.32 quaternion
+    // integration over ≈ 6e4 steps), 1e-6 m on the clamp travel.
+    let (first, last) = (&a.frames[0], a.frames.last().unwrap());
+    let t = last.time_s - first.time_s;
+    let tooth = model.spheres.len();
+    let axis_z = machine.reach_above_root_m - machine.tip_radius_m;
+    let [_, y0, z0] = first.positions_m[tooth];
+    let [_, y1, z1] = last.positions_m[tooth];
+    let r1 = (y1 * y1 + (z1 - axis_z).powi(2)).sqrt();
+    assert!(
+        (r1 - machine.tip_radius_m).abs() < 1e-6,
+        "tooth radius {r1}"
+    );
+    let turned = (z1 - axis_z).atan2(y1) - (z0 - axis_z).atan2(y0);
+    let expected = machine.drum_omega_rad_s() * t;
+    let tau = std::f64::consts::TAU;
+    let diff = (turned - expected).rem_euclid(tau);
+    assert!(
+        diff.min(tau - diff) < 1e-4,
+        "turned {turned} vs ω·t {expected} (mod 2π)"
+    );
+    let clamp = model
+        .bodies
+        .iter()
+        .rposition(|b| b.kind == Kind::MainStem)
+        .unwrap();
+    let c = model.bodies[clamp].spheres[0];
+    let moved = last.positions_m[c][0] - first.positions_m[c][0];
+    assert!(
+        (moved - machine.forward_speed_m_s * t).abs() < 1e-6,
+        "clamp moved {moved} m"
+    );
 }
 
 #[test]
