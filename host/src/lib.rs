@@ -9,6 +9,7 @@ pub mod cli;
 pub mod diagnose;
 pub mod doe;
 pub mod experiments;
+pub mod harvest;
 pub mod io;
 pub mod lab;
 pub mod optimize;

@@ -8,6 +8,7 @@ pub mod compare;
 pub mod diagnose;
 pub mod doe;
 pub mod fit;
+pub mod harvest;
 pub mod lab;
 pub mod lab_repose;
 pub mod plant_calibrate;
@@ -56,6 +57,9 @@ pub enum Command {
     Calibrate(calibrate::Args),
     /// Calibrate the pod–stalk junction bond on the tensile test (seed 001's plan).
     PlantCalibrate(plant_calibrate::Args),
+    /// Virtual harvest: plants through a toothed picking drum; loss rate and t-test against
+    /// the field (seed 001 Table 12).
+    Harvest(harvest::Args),
 }
 
 impl Cli {
@@ -74,6 +78,7 @@ impl Cli {
             Command::Simulate(args) => simulate::run(args),
             Command::Calibrate(args) => calibrate::run(args),
             Command::PlantCalibrate(args) => plant_calibrate::run(args),
+            Command::Harvest(args) => harvest::run(args),
         }
     }
 }
