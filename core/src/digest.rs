@@ -149,9 +149,16 @@ impl<S: Scalar> World<'_, S> {
             for c in self.contact_slots(i as u32) {
                 h.u64(c.partner as u64);
                 h.v(c.state.delta);
-                // Hashed only when set, so digests of runs without hysteresis are unchanged.
+                // Optional-effect state is hashed only when set, so digests of runs without those
+                // effects are unchanged.
                 if c.state.max_overlap != S::ZERO {
                     h.s(c.state.max_overlap);
+                }
+                if c.state.roll_angle != Vec3::ZERO {
+                    h.v(c.state.roll_angle);
+                }
+                if c.state.jkr_attached {
+                    h.u64(1);
                 }
             }
         }
