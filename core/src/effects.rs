@@ -54,10 +54,15 @@
 //!    (before the clip if it is part of the repulsive law, after it if it may attract), and a
 //!    field to [`EffectSpec`] so [`World::set_pair_effects`] can set it. Keep the `on` guard:
 //!    that is what keeps the golden digests unchanged while the effect is off.
-//! 3. **Make it calibratable.** In the host, add an entry to the effect catalogue
-//!    (`host/src/diagnose/effects.rs`): its name, unit, off value, a finite-difference step
-//!    and how it maps onto [`EffectSpec`]. `arachis diagnose` then tests it as a candidate
-//!    and `arachis fit --with liquid_bridge` calibrates F_b with the base parameters.
+//! 3. **Make it calibratable.** In the host, add a field to `ModelParams` and an entry to
+//!    the effect catalogue `CATALOGUE` (`host/src/diagnose/params.rs`): its name, unit, a
+//!    finite-difference step and a typical scale (off value 0), and pass the field into
+//!    [`EffectSpec`] where the cheap experiments build their world
+//!    (`host/src/diagnose/experiment.rs`). `arachis diagnose` then tests it as a candidate
+//!    and `arachis fit --with liquid_bridge` calibrates F_b with the base parameters. An
+//!    effect is only testable if some experiment responds to it in a way the base
+//!    parameters cannot mimic: hysteresis needed the `unload` experiment, since in a rebound
+//!    it only lowers e, which the calibrated restitution absorbs.
 
 use crate::contact::{
     CohesionJkr, CohesionSjkr, HystereticNormal, RollingEpsd, ViscoelasticNormal,
