@@ -27,6 +27,9 @@ fn kinematics<S: Scalar>() -> ContactKinematics<S> {
         dt: S::from_f64(0.02),
         lever_i: S::from_f64(3.99),
         lever_j: S::from_f64(3.99),
+        r_star: S::from_f64(r_star),
+        w_rel: Vec3::ZERO,
+        rolling_inertia: S::ZERO,
     }
 }
 

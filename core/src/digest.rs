@@ -3,7 +3,8 @@
 //!
 //! [`World::digest`] is 64-bit FNV-1a over the raw bits (Q32.32 integers or `f64::to_bits`,
 //! little-endian) of the whole state: time and step count, dt, gravity, every body (all
-//! fields), every sphere, the live contact history (per sphere: count, then partner keys and δt),
+//! fields), every sphere, the live contact history (per sphere: count, then partner keys and δt,
+//! plus α_max, the rolling angle θr and the JKR neck flag only when set),
 //! and every wall (geometry, velocity, material). No `usize` enters the hash, so the digest is
 //! the same on 32- and 64-bit targets. [`World::body_records`] yields one record per body
 //! whose `Display` is a single line, with the body's own FNV-1a hash: diff two dumps to find
@@ -149,9 +150,16 @@ impl<S: Scalar> World<'_, S> {
             for c in self.contact_slots(i as u32) {
                 h.u64(c.partner as u64);
                 h.v(c.state.delta);
-                // Hashed only when set, so digests of runs without hysteresis are unchanged.
+                // Optional-effect state is hashed only when set, so digests of runs without those
+                // effects are unchanged.
                 if c.state.max_overlap != S::ZERO {
                     h.s(c.state.max_overlap);
+                }
+                if c.state.roll_angle != Vec3::ZERO {
+                    h.v(c.state.roll_angle);
+                }
+                if c.state.jkr_attached {
+                    h.u64(1);
                 }
             }
         }

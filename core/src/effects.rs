@@ -6,7 +6,13 @@
 //! | viscoelastic damping | relaxation time A, s (0) | material pair | [`ViscoelasticNormal`] | Fn_v = −(4/3)E*·A·a·vn (Brilliantov et al. 1996) |
 //! | SJKR cohesion | energy density k, J/m³ (0) | material pair | [`CohesionSjkr`] | Fc = k·π·2R*α (LIGGGHTS sjkr) |
 //! | hysteretic contact | plastic fraction λ (0) | material pair | [`HystereticNormal`] | unloading to a plastic set λ·α_max (after Walton & Braun 1986) |
+//! | EPSD rolling resistance | rolling friction μr (0), damping ratio η_r | material pair | [`RollingEpsd`] | T = −k_r·θr − C_r·ω_r, \|k_r·θr\| ≤ μr·R*·Fn, k_r = 2.25·k_n·μr²R*² (Ai et al. 2011, type C) |
+//! | full JKR cohesion | work of adhesion Γ, J/m² (0) | material pair | [`CohesionJkr`] | F = 4E*a³/(3R*) − √(8πΓE*a³), δ = a²/R* − √(2πΓa/E*); pull-off 1.5πΓR* (JKR 1971) |
 //! | air drag | drag coefficient Cd (0), air density ρ, kg/m³ | world | [`AirDrag`] | F = −½ρ·Cd·πr²·\|v\|v |
+//!
+//! The EPSD form is an alternative to (or an addition to) the CDT rolling friction of
+//! [`crate::pair::PairSpec::rolling_friction`]; set that to 0 to use EPSD alone. JKR replaces
+//! the Hertz normal law and cannot be combined with the hysteretic contact.
 //!
 //! With every effect off the step is bit-identical to the plain Hertz–Mindlin law (the golden
 //! digests in `testdata/digests` do not change): each term is guarded by its `on` flag.
@@ -37,7 +43,8 @@
 //!    // Unit test against theory: the force is exactly −F_b while in contact.
 //!    let k = ContactKinematics { normal: Vec3::new(Fx::ZERO, Fx::ZERO, Fx::ONE),
 //!        overlap: Fx::from_f64(0.01), contact_radius: Fx::from_f64(0.2), sqrt_a_mstar: Fx::ZERO,
-//!        vn: Fx::ZERO, vt: Vec3::ZERO, dt: Fx::from_f64(1e-3), lever_i: Fx::ONE, lever_j: Fx::ZERO };
+//!        vn: Fx::ZERO, vt: Vec3::ZERO, dt: Fx::from_f64(1e-3), lever_i: Fx::ONE, lever_j: Fx::ZERO,
+//!        r_star: Fx::ONE, w_rel: Vec3::ZERO, rolling_inertia: Fx::ZERO };
 //!    let mut out = ContactForce::default();
 //!    LiquidBridge::<Fx>::new(0.002).apply(&k, &mut ContactState::default(), &mut out);
 //!    assert!((out.normal.to_f64() + 0.002).abs() < 1e-9);
@@ -47,12 +54,19 @@
 //!    (before the clip if it is part of the repulsive law, after it if it may attract), and a
 //!    field to [`EffectSpec`] so [`World::set_pair_effects`] can set it. Keep the `on` guard:
 //!    that is what keeps the golden digests unchanged while the effect is off.
-//! 3. **Make it calibratable.** In the host, add an entry to the effect catalogue
-//!    (`host/src/diagnose/effects.rs`): its name, unit, off value, a finite-difference step
-//!    and how it maps onto [`EffectSpec`]. `arachis diagnose` then tests it as a candidate
-//!    and `arachis fit --with liquid_bridge` calibrates F_b with the base parameters.
+//! 3. **Make it calibratable.** In the host, add a field to `ModelParams` and an entry to
+//!    the effect catalogue `CATALOGUE` (`host/src/diagnose/params.rs`): its name, unit, a
+//!    finite-difference step and a typical scale (off value 0), and pass the field into
+//!    [`EffectSpec`] where the cheap experiments build their world
+//!    (`host/src/diagnose/experiment.rs`). `arachis diagnose` then tests it as a candidate
+//!    and `arachis fit --with liquid_bridge` calibrates F_b with the base parameters. An
+//!    effect is only testable if some experiment responds to it in a way the base
+//!    parameters cannot mimic: hysteresis needed the `unload` experiment, since in a rebound
+//!    it only lowers e, which the calibrated restitution absorbs.
 
-use crate::contact::{CohesionSjkr, HystereticNormal, ViscoelasticNormal};
+use crate::contact::{
+    CohesionJkr, CohesionSjkr, HystereticNormal, RollingEpsd, ViscoelasticNormal,
+};
 use crate::error::SetupError;
 use crate::material::{finite, MaterialId};
 use crate::num::Scalar;
@@ -71,6 +85,14 @@ pub struct EffectSpec {
     pub cohesion_energy_density_j_m3: f64,
     /// Hysteretic normal contact: plastic fraction λ ∈ [0, 1) (0 = off); e = √(1 − λ).
     pub plastic_fraction: f64,
+    /// EPSD rolling resistance: rolling friction coefficient μr ≥ 0 (0 = off), limiting
+    /// torque μr·R*·Fn (Ai et al. 2011 eq. (15)).
+    pub epsd_rolling_friction: f64,
+    /// EPSD rolling damping ratio η_r ≥ 0 (fraction of critical, Ai et al. 2011 eq. (14));
+    /// only used while `epsd_rolling_friction` > 0. 0.3 is Ai et al.'s typical value.
+    pub epsd_damping_ratio: f64,
+    /// Full JKR cohesion: work of adhesion Γ, J/m² ≥ 0 (0 = off); pull-off force 1.5πΓR*.
+    pub jkr_work_of_adhesion_j_m2: f64,
 }
 
 fn non_negative(x: f64, what: &'static str) -> Result<f64, SetupError> {
@@ -100,6 +122,15 @@ impl<S: Scalar> World<'_, S> {
                 value: lambda,
             });
         }
+        let mu_r = non_negative(spec.epsd_rolling_friction, "EPSD rolling friction")?;
+        let eta_r = non_negative(spec.epsd_damping_ratio, "EPSD rolling damping ratio")?;
+        let gamma = non_negative(spec.jkr_work_of_adhesion_j_m2, "JKR work of adhesion")?;
+        if gamma > 0.0 && lambda > 0.0 {
+            return Err(SetupError::IncompatibleEffects {
+                a: "JKR cohesion",
+                b: "hysteretic normal contact",
+            });
+        }
         let (ia, ib) = (a.0 as usize, b.0 as usize);
         if ia >= self.materials.len() || ib >= self.materials.len() {
             return Err(SetupError::UnknownMaterial { id: a.0.max(b.0) });
@@ -111,7 +142,17 @@ impl<S: Scalar> World<'_, S> {
         p.viscoelastic = ViscoelasticNormal::new(tau, p.e_star_mpa);
         p.cohesion = CohesionSjkr::new(k);
         p.hysteretic = HystereticNormal::new(lambda, p.e_star_mpa);
-        for v in [p.viscoelastic.coef, p.cohesion.coef] {
+        p.rolling_epsd = RollingEpsd::new(mu_r, eta_r, p.e_star_mpa);
+        p.jkr = CohesionJkr::new(gamma, p.e_star_mpa);
+        for v in [
+            p.viscoelastic.coef,
+            p.cohesion.coef,
+            p.rolling_epsd.stiffness_coef,
+            p.rolling_epsd.two_damping_ratio,
+            p.jkr.c,
+            p.jkr.adhesion_coef,
+            p.jkr.reach,
+        ] {
             if !v.is_valid() {
                 return Err(SetupError::NotRepresentable {
                     what: "effect constant",

@@ -118,6 +118,13 @@ pub enum SetupError {
         /// The value given.
         value: f64,
     },
+    /// Two optional effects that cannot be on together for one pair.
+    IncompatibleEffects {
+        /// The first effect.
+        a: &'static str,
+        /// The second effect.
+        b: &'static str,
+    },
 }
 
 impl fmt::Display for SetupError {
@@ -169,6 +176,9 @@ impl fmt::Display for SetupError {
                  (a fraction of the Rayleigh time of the smallest sphere)"
             ),
             SetupError::BadWall { reason } => write!(f, "invalid wall: {reason}"),
+            SetupError::IncompatibleEffects { a, b } => {
+                write!(f, "{a} and {b} cannot both be on for one material pair")
+            }
             SetupError::NegativeEffectParameter { what, value } => {
                 write!(f, "{what} must be >= 0 (0 switches the effect off), got {value}")
             }

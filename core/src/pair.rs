@@ -8,7 +8,9 @@
 //! assert!(p.validate().is_ok());
 //! ```
 
-use crate::contact::{CohesionSjkr, HystereticNormal, ViscoelasticNormal};
+use crate::contact::{
+    CohesionJkr, CohesionSjkr, HystereticNormal, RollingEpsd, ViscoelasticNormal,
+};
 use crate::contact::{
     ContactForce, ContactKinematics, ContactState, ContactTerm, CoulombLimit, HertzNormal,
     MindlinTangential, NormalDamping, RollingCdt, TangentialDamping,
@@ -121,6 +123,10 @@ pub struct PairParams<S> {
     pub cohesion: CohesionSjkr<S>,
     /// Optional effect: hysteretic (plastic) normal contact (off by default).
     pub hysteretic: HystereticNormal<S>,
+    /// Optional effect: EPSD rolling resistance (off by default).
+    pub rolling_epsd: RollingEpsd<S>,
+    /// Optional effect: full JKR cohesion (off by default).
+    pub jkr: CohesionJkr<S>,
 }
 
 impl<S: Scalar> PairParams<S> {
@@ -142,6 +148,8 @@ impl<S: Scalar> PairParams<S> {
             viscoelastic: ViscoelasticNormal::default(),
             cohesion: CohesionSjkr::default(),
             hysteretic: HystereticNormal::default(),
+            rolling_epsd: RollingEpsd::default(),
+            jkr: CohesionJkr::default(),
         };
         p.hertz.on &= t.hertz_normal;
         p.normal_damping.on &= t.normal_damping;
@@ -152,10 +160,17 @@ impl<S: Scalar> PairParams<S> {
         p
     }
 
-    /// `true` when contacts of this pair keep history (tangential spring or hysteresis).
+    /// `true` when contacts of this pair keep history (tangential spring, hysteresis, EPSD
+    /// rolling angle or JKR neck).
     #[inline(always)]
     pub fn keeps_history(&self) -> bool {
-        self.tangential.on | self.hysteretic.on
+        self.tangential.on | self.hysteretic.on | self.rolling_epsd.on | self.jkr.on
+    }
+
+    /// `true` when a term needs R* in [`ContactKinematics::r_star`] (EPSD rolling, JKR).
+    #[inline(always)]
+    pub fn needs_r_star(&self) -> bool {
+        self.rolling_epsd.on | self.jkr.on
     }
 
     /// `true` when a damping term needs √(a·m*).
@@ -164,7 +179,7 @@ impl<S: Scalar> PairParams<S> {
         self.normal_damping.on | self.tangential_damping.on
     }
 
-    /// Run all terms in pipeline order (normal → clip → tangential → rolling).
+    /// Run all terms in pipeline order (normal → clip → tangential → rolling → cohesion).
     #[inline(always)]
     pub fn evaluate(
         &self,
@@ -173,6 +188,7 @@ impl<S: Scalar> PairParams<S> {
     ) -> ContactForce<S> {
         let mut out = ContactForce::default();
         self.hertz.apply(k, state, &mut out);
+        self.jkr.apply(k, state, &mut out);
         self.hysteretic.apply(k, state, &mut out);
         self.normal_damping.apply(k, state, &mut out);
         self.viscoelastic.apply(k, state, &mut out);
@@ -181,7 +197,11 @@ impl<S: Scalar> PairParams<S> {
         self.tangential_damping.apply(k, state, &mut out);
         self.coulomb.apply(k, state, &mut out);
         self.rolling.apply(k, state, &mut out);
+        self.rolling_epsd.apply(k, state, &mut out);
         self.cohesion.apply(k, state, &mut out);
+        if self.jkr.on {
+            out.normal -= out.attraction;
+        }
         out
     }
 }

@@ -1,4 +1,5 @@
-//! Contact history: the accumulated tangential displacement δt of each live contact.
+//! Contact history: the accumulated tangential displacement δt of each live contact, and
+//! the state of the optional terms that need one (α_max, the rolling angle θr, the JKR neck).
 //!
 //! Storage is a fixed arena of [`ContactSlot`]s, a fixed number per sphere, double-buffered
 //! (last step's slots are read, this step's are written). The sphere with the lower id owns a
@@ -20,6 +21,12 @@ pub struct ContactState<S> {
     /// Largest overlap α_max of this contact so far, mm (only kept by the hysteretic normal
     /// term; 0 otherwise).
     pub max_overlap: S,
+    /// Accumulated relative rolling rotation θr of i relative to j, rad, in the tangent plane
+    /// (only kept by the EPSD rolling term, [`super::RollingEpsd`]; zero otherwise).
+    pub roll_angle: Vec3<S>,
+    /// `true` while a JKR contact ([`super::CohesionJkr`]) is attached: it then holds down to
+    /// the negative overlap of the JKR separation. `false` otherwise.
+    pub jkr_attached: bool,
 }
 
 /// One history slot: partner key and state.

@@ -13,8 +13,11 @@
 //! | tangential | [`CoulombLimit`] | `coulomb.rs` | \|Ft\| ≤ μs·Fn, history rescaled |
 //! | rolling | [`RollingCdt`] | `rolling_cdt.rs` | T = −μr·Fn·Ri·ω̂i (eq. 7, EDEM CDT) |
 //! | normal (optional) | [`ViscoelasticNormal`] | `viscoelastic_normal.rs` | Fn_v = −(4/3)E*·A·a·vn (Brilliantov 1996), before the clip |
+//! | normal (optional) | [`CohesionJkr`] | `cohesion_jkr.rs` | replaces Hertz by 4E*a³/(3R*), a from δ = a²/R* − √(2πΓa/E*) (JKR 1971); adhesive part below |
 //! | normal (optional) | [`HystereticNormal`] | `hysteretic_normal.rs` | unloading F_max((α−λα_max)/(α_max−λα_max))^{3/2} (after Walton & Braun 1986) |
+//! | rolling (optional) | [`RollingEpsd`] | `rolling_epsd.rs` | T_j = k_r·θr + C_r·ω_r, \|k_r·θr\| ≤ μr·R*·Fn, k_r = 2.25·(2E*a)·μr²R*² (Ai et al. 2011 type C); T_i = −T_j |
 //! | cohesion (optional) | [`CohesionSjkr`] | `cohesion_sjkr.rs` | Fc = −k·π·2R*α (SJKR), last, may attract |
+//! | cohesion (optional) | [`CohesionJkr`] | `cohesion_jkr.rs` | Fc = −√(8πΓE*a³) (JKR adhesive part), last; pull-off 1.5πΓR*, holds to δ_min < 0 |
 //!
 //! The optional terms are off by default and switched per pair with
 //! [`crate::world::World::set_pair_effects`]; [`crate::effects`] lists them (with air drag, a
@@ -33,6 +36,7 @@
 //! towards j; relative velocity is v_j − v_i at the contact point, so vn = v_rel·n > 0 when
 //! separating. Forces in [`ContactForce`] act on j; i receives the opposite.
 
+pub mod cohesion_jkr;
 pub mod cohesion_sjkr;
 pub mod coulomb;
 pub mod hertz_normal;
@@ -41,9 +45,11 @@ pub mod hysteretic_normal;
 pub mod mindlin_tangential;
 pub mod normal_damping;
 pub mod rolling_cdt;
+pub mod rolling_epsd;
 pub mod tangential_damping;
 pub mod viscoelastic_normal;
 
+pub use cohesion_jkr::CohesionJkr;
 pub use cohesion_sjkr::CohesionSjkr;
 pub use coulomb::CoulombLimit;
 pub use hertz_normal::HertzNormal;
@@ -52,6 +58,7 @@ pub use hysteretic_normal::HystereticNormal;
 pub use mindlin_tangential::MindlinTangential;
 pub use normal_damping::NormalDamping;
 pub use rolling_cdt::RollingCdt;
+pub use rolling_epsd::RollingEpsd;
 pub use tangential_damping::TangentialDamping;
 pub use viscoelastic_normal::ViscoelasticNormal;
 
@@ -87,6 +94,16 @@ pub struct ContactKinematics<S> {
     pub lever_i: S,
     /// Distance from body j's centre of mass to the contact point, mm (0 for a wall).
     pub lever_j: S,
+    /// Effective radius R* = RiRj/(Ri+Rj), mm (wall: Ri); only set when a term needs it
+    /// ([`crate::pair::PairParams::needs_r_star`]), zero otherwise.
+    pub r_star: S,
+    /// Relative angular velocity ωi − ωj, rad/ms (wall: ωi); only set when the EPSD rolling
+    /// term is on, zero otherwise.
+    pub w_rel: Vec3<S>,
+    /// Equivalent rolling inertia I_r = [1/(Ii + mi·ri²) + 1/(Ij + mj·rj²)]⁻¹, g·mm²
+    /// (Ai et al. 2011 eq. (14); wall: Ii + mi·ri²), ri the lever; only set when the EPSD
+    /// rolling term is on, zero otherwise.
+    pub rolling_inertia: S,
 }
 
 /// Force and rolling torque of one contact, accumulated by the terms.
@@ -103,6 +120,11 @@ pub struct ContactForce<S> {
     pub roll_i: S,
     /// Rolling-resistance torque magnitude on body j, N·mm, acting along −ω̂j.
     pub roll_j: S,
+    /// Rolling-resistance torque vector on body j, N·mm; i receives the opposite (EPSD term).
+    pub rolling_torque: Vec3<S>,
+    /// Attractive normal force, N (≥ 0), subtracted from `normal` after friction and rolling
+    /// (the adhesive part of JKR cohesion).
+    pub attraction: S,
 }
 
 /// One piece of the contact law. Implementations add to `out` and may update `state`

@@ -59,6 +59,9 @@ mod tests {
             dt: Fx::from_f64(1e-3),
             lever_i: Fx::ONE,
             lever_j: Fx::ZERO,
+            r_star: Fx::ZERO,
+            w_rel: Vec3::ZERO,
+            rolling_inertia: Fx::ZERO,
         }
     }
 

@@ -61,6 +61,7 @@ impl<S: Scalar> Ctx<'_, S> {
         n: Vec3<S>,
         overlap: S,
         r_star_alpha: S,
+        r_star: S,
         m_star: S,
     ) -> Result<Vec3<S>, Overflowed> {
         let bod_i = &self.bodies[bi];
@@ -76,9 +77,22 @@ impl<S: Scalar> Ctx<'_, S> {
         let mut v_rel = j.wall_velocity - (vel_i + w_i.cross(arm_i));
         let mut arm_j = Vec3::ZERO;
         let mut lever_j = S::ZERO;
+        let mut w_rel = Vec3::ZERO;
+        let mut rolling_inertia = S::ZERO;
+        if pair.rolling_epsd.on {
+            w_rel = w_i;
+            rolling_inertia = rolling_moment(bod_i, arm_i);
+        }
         if let Some(bj) = j.body {
             let bod_j = &self.bodies[bj];
             arm_j = c - bod_j.position;
+            if pair.rolling_epsd.on {
+                w_rel -= bod_j.angular_velocity;
+                if bod_j.inv_mass != S::ZERO {
+                    let ij = rolling_moment(bod_j, arm_j);
+                    rolling_inertia = rolling_inertia * ij / (rolling_inertia + ij);
+                }
+            }
             v_rel += bod_j.velocity + bod_j.angular_velocity.cross(arm_j);
             if pair.rolling.on {
                 lever_j = if bod_j.is_clump {
@@ -90,7 +104,12 @@ impl<S: Scalar> Ctx<'_, S> {
         }
         let vn = v_rel.dot(n);
         let vt = v_rel - n.scale(vn);
-        let a = r_star_alpha.sqrt();
+        // A JKR neck (negative overlap) has no Hertz contact radius.
+        let a = if r_star_alpha > S::ZERO {
+            r_star_alpha.sqrt()
+        } else {
+            S::ZERO
+        };
         let sqrt_a_mstar = if pair.needs_damping() {
             (a * m_star).sqrt()
         } else {
@@ -111,14 +130,22 @@ impl<S: Scalar> Ctx<'_, S> {
             dt: self.dt,
             lever_i,
             lever_j,
+            r_star,
+            w_rel,
+            rolling_inertia,
         };
         if !pair.keeps_history() {
             *state = ContactState::default();
         }
         let out = pair.evaluate(&kin, state);
         let f = n.scale(out.normal) + out.tangential;
-        let ti = arm_i.cross(f);
-        let tj = arm_j.cross(f);
+        let mut ti = arm_i.cross(f);
+        let mut tj = arm_j.cross(f);
+        if pair.rolling_epsd.on {
+            // EPSD torque on j; i receives the opposite (i's torque is −ti).
+            ti += out.rolling_torque;
+            tj += out.rolling_torque;
+        }
         if !(f.is_valid()
             & ti.is_valid()
             & tj.is_valid()
@@ -142,6 +169,19 @@ impl<S: Scalar> Ctx<'_, S> {
         }
         Ok(f)
     }
+}
+
+/// I + m·|arm|², g·mm², of one side of a rolling contact (Ai et al. 2011 eq. (14)): a
+/// sphere's I, or for a clump the mean principal moment (an approximation: the exact rolling
+/// inertia of a clump depends on the rolling axis).
+#[inline]
+fn rolling_moment<S: Scalar>(b: &Body<S>, arm: Vec3<S>) -> S {
+    let i = if b.is_clump {
+        (b.inertia.x + b.inertia.y + b.inertia.z) / S::ONE.mul_int(3)
+    } else {
+        b.inertia.x
+    };
+    i + b.mass * arm.norm2()
 }
 
 type PairTable<S> = [[PairParams<S>; MAX_MATERIALS]; MAX_MATERIALS];
@@ -307,6 +347,7 @@ fn sphere_walls<S: Scalar>(
                 nrm,
                 a,
                 s.radius * a,
+                s.radius,
                 m_star,
             ) {
                 Ok(f) => w.force += f,
@@ -351,8 +392,14 @@ fn sphere_pair<S: Scalar>(
     let sj = &spheres[j];
     let d = sj.position - si.position;
     let rs = si.radius + sj.radius;
+    // An attached JKR contact holds across a neck, down to a negative overlap.
+    let reach = if state.jkr_attached {
+        rs + pairs[si.material as usize][sj.material as usize].jkr.reach
+    } else {
+        rs
+    };
     // Cheap per-axis rejection before the squared distance.
-    if d.x.abs() >= rs || d.y.abs() >= rs || d.z.abs() >= rs {
+    if d.x.abs() >= reach || d.y.abs() >= reach || d.z.abs() >= reach {
         *state = ContactState::default();
         return Ok(false);
     }
@@ -365,7 +412,7 @@ fn sphere_pair<S: Scalar>(
     if !d2.is_valid() {
         return Err(overflow());
     }
-    if d2 >= rs * rs {
+    if d2 >= reach * reach {
         *state = ContactState::default();
         return Ok(false);
     }
@@ -405,6 +452,13 @@ fn sphere_pair<S: Scalar>(
     } else {
         si.radius * sj.radius * overlap / rs
     };
+    let r_star = if !pair.needs_r_star() {
+        S::ZERO
+    } else if si.radius == sj.radius {
+        si.radius * S::HALF
+    } else {
+        si.radius * sj.radius / rs
+    };
     let m_star = if pair.needs_damping() {
         let (bi_, bj_) = (&ctx.bodies[bi], &ctx.bodies[bj]);
         if bi_.mass == bj_.mass {
@@ -430,8 +484,14 @@ fn sphere_pair<S: Scalar>(
         n,
         overlap,
         r_star_alpha,
+        r_star,
         m_star,
     ) {
+        Ok(_) if pair.jkr.on && !state.jkr_attached => {
+            // The JKR neck broke (beyond the separation): no force was applied.
+            *state = ContactState::default();
+            Ok(false)
+        }
         Ok(_) => Ok(pair.keeps_history()),
         Err(Overflowed) => Err(overflow()),
     }

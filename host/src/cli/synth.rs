@@ -65,7 +65,7 @@ pub fn run(args: Args) -> Result<()> {
                 let k = ExperimentKind::ALL
                     .into_iter()
                     .find(|k| k.name() == kind.trim())
-                    .ok_or_else(|| anyhow!("--noise '{n}': unknown experiment kind '{kind}' (rebound, press, fall)"))?;
+                    .ok_or_else(|| anyhow!("--noise '{n}': unknown experiment kind '{kind}' (rebound, press, fall, unload)"))?;
                 noise.per_kind.push((k, number(v, "--noise")?));
             }
         }

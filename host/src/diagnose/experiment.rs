@@ -7,11 +7,18 @@
 //! | `rebound` | drop height, m (impact speed √(2gh)) | rebound/impact speed ratio, - | restitution, viscoelastic |
 //! | `press` | static load on the sphere, N | resting overlap on the floor, µm | Young's modulus, cohesion |
 //! | `fall` | drop height, m | free-fall time, ms | drag |
+//! | `unload` | peak load, N | resting overlap after unloading to half the peak, µm | Young's modulus, cohesion, hysteretic |
 //!
 //! The rebound run starts at first touch with the impact speed (the free flight before it is
 //! not simulated); the press run applies the load as a body force (gravity scaled to F/m) and
 //! lets the sphere settle with constant-e damping (e fixed at [`PRESS_SETTLING_RESTITUTION`],
 //! the press is quasi-static, so e does not enter the result); the fall run has no floor.
+//! The unload run starts, like the press, at rest at the Hertz overlap of the peak load (the
+//! contact's peak overlap α_max), then settles under half that load: elastically it rests at
+//! 2^{-2/3} of the peak overlap, with a plastic fraction λ on the unloading curve of
+//! [`arachis_core::contact::HystereticNormal`] at λ·α_max + (1 − λ)·2^{-2/3}·α_max — the
+//! load–unload loop of a compression test (seed 001), the one cheap experiment that sees
+//! hysteresis apart from restitution.
 
 use anyhow::{bail, Context, Result};
 use arachis_core::effects::{EffectSpec, AIR_DENSITY_20C_KG_M3};
@@ -36,6 +43,8 @@ const REBOUND_STEPS_PER_CONTACT: f64 = 100.0;
 /// Time steps per small-oscillation period in the press run, and periods simulated.
 const PRESS_STEPS_PER_PERIOD: f64 = 30.0;
 const PRESS_PERIODS: f64 = 25.0;
+/// The unload run's final load as a fraction of its peak.
+pub const UNLOAD_FRACTION: f64 = 0.5;
 /// Time step of the fall run, s (below the Rayleigh bound of the pod sphere, 7.5e-5 s).
 const FALL_DT_S: f64 = 5.0e-5;
 /// Step limit guarding every run.
@@ -58,11 +67,13 @@ pub enum ExperimentKind {
     Press,
     /// Free fall: condition height (m), observable fall time (ms).
     Fall,
+    /// Load then unload to half: condition peak load (N), observable resting overlap (µm).
+    Unload,
 }
 
 impl ExperimentKind {
     /// All kinds.
-    pub const ALL: [ExperimentKind; 3] = [Self::Rebound, Self::Press, Self::Fall];
+    pub const ALL: [ExperimentKind; 4] = [Self::Rebound, Self::Press, Self::Fall, Self::Unload];
 
     /// Name in study files.
     pub fn name(self) -> &'static str {
@@ -70,6 +81,7 @@ impl ExperimentKind {
             Self::Rebound => "rebound",
             Self::Press => "press",
             Self::Fall => "fall",
+            Self::Unload => "unload",
         }
     }
     /// Condition label with unit.
@@ -78,6 +90,7 @@ impl ExperimentKind {
             Self::Rebound => "drop height, m",
             Self::Press => "load, N",
             Self::Fall => "fall height, m",
+            Self::Unload => "peak load, N",
         }
     }
     /// Observable label with unit.
@@ -86,6 +99,7 @@ impl ExperimentKind {
             Self::Rebound => "rebound/impact speed ratio",
             Self::Press => "resting overlap, um",
             Self::Fall => "fall time, ms",
+            Self::Unload => "overlap after unloading to half, um",
         }
     }
     /// Valid condition range (inclusive), in the condition's unit.
@@ -94,6 +108,7 @@ impl ExperimentKind {
             Self::Rebound => (0.005, 3.0),
             Self::Press => (5.0e-4, 0.5),
             Self::Fall => (0.05, 5.0),
+            Self::Unload => (5.0e-4, 0.5),
         }
     }
 
@@ -110,7 +125,8 @@ impl ExperimentKind {
         p.validate()?;
         let r = match self {
             Self::Rebound => rebound(condition, p),
-            Self::Press => press(condition, p),
+            Self::Press => press(condition, p, 1.0),
+            Self::Unload => press(condition, p, UNLOAD_FRACTION),
             Self::Fall => fall(condition, p),
         };
         r.with_context(|| format!("simulating {} at {condition}", self.name()))
@@ -200,6 +216,7 @@ fn floor_world<'a>(
         EffectSpec {
             viscoelastic_time_s: p.viscoelastic_time_s,
             cohesion_energy_density_j_m3: p.cohesion_j_m3,
+            plastic_fraction: p.plastic_fraction,
             ..EffectSpec::default()
         },
     )
@@ -248,7 +265,8 @@ fn rebound(height_m: f64, p: &ModelParams) -> Result<f64> {
     bail!("rebound did not finish in {MAX_STEPS} steps")
 }
 
-fn press(load_n: f64, p: &ModelParams) -> Result<f64> {
+/// Start at rest at the Hertz overlap of `load_n` (N) and settle under `fraction`·`load_n`.
+fn press(load_n: f64, p: &ModelParams, fraction: f64) -> Result<f64> {
     let m = mass_kg();
     let es = e_star_pa(p);
     let r = SPHERE_RADIUS_M;
@@ -257,7 +275,7 @@ fn press(load_n: f64, p: &ModelParams) -> Result<f64> {
     let mut a = Arena::new();
     let mut w =
         floor_world(&mut a, p, PRESS_SETTLING_RESTITUTION, r - alpha0, 0.0).map_err(core_err)?;
-    w.set_gravity_m_s2([0.0, 0.0, -load_n / m])
+    w.set_gravity_m_s2([0.0, 0.0, -fraction * load_n / m])
         .map_err(core_err)?;
     // Small-oscillation period with the tangent stiffness 2E*a, a = √(Rα).
     let k = 2.0 * es * (r * alpha0).sqrt();
@@ -305,6 +323,7 @@ mod tests {
             viscoelastic_time_s: 0.0,
             cohesion_j_m3: 0.0,
             drag_coefficient: 0.0,
+            plastic_fraction: 0.0,
         }
     }
 
@@ -329,6 +348,28 @@ mod tests {
             (e1 - e2).abs() < 0.01 && (e1 - 0.55).abs() < 0.02,
             "{e1} {e2}"
         );
+    }
+
+    #[test]
+    fn unload_rests_on_the_hysteretic_unloading_curve() {
+        // Peak load F: α_max = (3F/(4E*√R))^{2/3}. Under F/2 the sphere rests where
+        // F/2 = F·((α − λα_max)/((1 − λ)α_max))^{3/2}, α = λα_max + (1 − λ)·2^{-2/3}·α_max;
+        // within 0.5 % for λ = 0 (elastic) and λ = 0.3.
+        let f = 0.01;
+        let peak =
+            (3.0 * f / (4.0 * e_star_pa(&base()) * SPHERE_RADIUS_M.sqrt())).powf(2.0 / 3.0) * 1e6;
+        for lambda in [0.0, 0.3] {
+            let p = ModelParams {
+                plastic_fraction: lambda,
+                ..base()
+            };
+            let alpha = ExperimentKind::Unload.simulate(f, &p).unwrap();
+            let theory = peak * (lambda + (1.0 - lambda) * UNLOAD_FRACTION.powf(2.0 / 3.0));
+            assert!(
+                (alpha / theory - 1.0).abs() < 5e-3,
+                "λ {lambda}: {alpha} vs {theory} um"
+            );
+        }
     }
 
     #[test]

@@ -23,6 +23,15 @@ pub struct ModelParams {
     /// Effect: air-drag coefficient Cd (0 = off).
     #[serde(default)]
     pub drag_coefficient: f64,
+    /// Effect: hysteretic normal contact, plastic fraction λ ∈ [0, 1) (0 = off). Not written
+    /// when 0, so study files from before the effect existed are reproduced byte for byte.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub plastic_fraction: f64,
+}
+
+/// serde helper: skip an effect parameter that is off.
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 /// Which kind of parameter an entry is.
@@ -67,7 +76,7 @@ impl ParamInfo {
 }
 
 /// The parameter catalogue: base parameters first, then the candidate effects.
-pub const CATALOGUE: [ParamInfo; 5] = [
+pub const CATALOGUE: [ParamInfo; 6] = [
     ParamInfo {
         name: "restitution",
         unit: "-",
@@ -117,6 +126,16 @@ pub const CATALOGUE: [ParamInfo; 5] = [
         about: "air drag coefficient Cd, F = -0.5 rho Cd A |v| v",
         get: |p| p.drag_coefficient,
         set: |p, v| p.drag_coefficient = v,
+    },
+    ParamInfo {
+        name: "hysteretic",
+        unit: "-",
+        role: Role::Effect,
+        fd_step: 0.02,
+        scale: 0.1,
+        about: "hysteretic (plastic) normal contact, plastic fraction of the peak overlap (Walton & Braun 1986)",
+        get: |p| p.plastic_fraction,
+        set: |p, v| p.plastic_fraction = v,
     },
 ];
 
@@ -171,6 +190,9 @@ impl ModelParams {
         }
         if !(self.restitution > 0.0 && self.restitution <= 1.0) {
             bail!("restitution = {} must be in (0, 1]", self.restitution);
+        }
+        if self.plastic_fraction >= 1.0 {
+            bail!("hysteretic = {} must be < 1", self.plastic_fraction);
         }
         if self.youngs_modulus_pa <= 0.0 {
             bail!("youngs_modulus = {} Pa must be > 0", self.youngs_modulus_pa);

@@ -182,6 +182,7 @@ mod tests {
                 viscoelastic_time_s: 0.0,
                 cohesion_j_m3: 0.0,
                 drag_coefficient: 0.0,
+                plastic_fraction: 0.0,
             },
             experiment: vec![Experiment {
                 kind: ExperimentKind::Fall,

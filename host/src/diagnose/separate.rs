@@ -26,6 +26,7 @@ fn search_range(kind: ExperimentKind) -> (f64, f64) {
         ExperimentKind::Rebound => (0.02, 2.0),
         ExperimentKind::Press => (1.0e-3, 0.2),
         ExperimentKind::Fall => (0.1, 3.0),
+        ExperimentKind::Unload => (1.0e-3, 0.2),
     }
 }
 

@@ -9,7 +9,7 @@
 //! restitution = 0.5
 //! youngs_modulus_pa = 8.43e6
 //! [[diagnosis.experiment]]
-//! kind = "rebound"                 # rebound | press | fall (see `experiment`)
+//! kind = "rebound"                 # rebound | press | fall | unload (see `experiment`)
 //! noise_sd = 0.01                  # optional: used only by `arachis synth`
 //! [[diagnosis.experiment.point]]
 //! condition = 0.05                 # drop height, m
