@@ -218,6 +218,7 @@ mod tests {
             pile_width_mm: 0.0,
             mm_per_px: 0.5,
             measurement,
+            refused_views: Vec::new(),
             pile,
         }
     }
