@@ -20,8 +20,9 @@ use crate::experiments::{
 };
 use crate::study::{RunSpec, SpecHash, Study};
 
-/// File name of the simulated pile's picture in the figures folder.
-pub const PILE_PICTURE: &str = "pile_simulated.png";
+/// File name of the simulated pile's picture in the figures folder (SVG: it carries the
+/// caption, which a PNG cannot, see `experiments::picture`).
+pub const PILE_PICTURE: &str = "pile_simulated.svg";
 
 /// The DEM rigs of `crate::experiments`, answering calibration runs of `study`.
 pub struct DemExperiment<'a> {

@@ -2,6 +2,10 @@
 //! view 0 (every sphere as a disc, as the camera sees it), its upper contour, and the two
 //! fitted flank lines with their angles, plus the mean over all views in the caption.
 //! Drawn with plotters at equal scales (mm), written atomically.
+//!
+//! A PNG carries no text (no caption, no axis labels): plotters is built without its `ttf`
+//! feature (which would pull in system font loading), and its bitmap backend panics when
+//! asked to draw text without a font. The SVG carries the text as `<text>` elements.
 
 use std::path::Path;
 
@@ -76,13 +80,14 @@ pub fn write_pile_picture(path: &Path, details: &ReposeDetails, title: &str) -> 
         Some("svg") => {
             let mut svg = String::new();
             let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
-            draw_pile(root, details, view, &caption, frame, &to_mm)?;
+            draw_pile(root, details, view, Some(&caption), frame, &to_mm)?;
             write_atomic(path, |w| Ok(w.write_all(svg.as_bytes())?))
         }
         Some("png") => {
             let mut rgb = vec![0u8; (size.0 * size.1 * 3) as usize];
             let root = BitMapBackend::with_buffer(&mut rgb, size).into_drawing_area();
-            draw_pile(root, details, view, &caption, frame, &to_mm)?;
+            // No text on the bitmap backend (module notes).
+            draw_pile(root, details, view, None, frame, &to_mm)?;
             let img = image::RgbImage::from_raw(size.0, size.1, rgb)
                 .ok_or_else(|| anyhow!("picture buffer has the wrong size"))?;
             write_atomic(path, |w| {
@@ -106,7 +111,7 @@ fn draw_pile<DB: DrawingBackend>(
     root: DrawingArea<DB, Shift>,
     details: &ReposeDetails,
     view: &crate::repose::SimulatedView,
-    caption: &str,
+    caption: Option<&str>,
     (x0, x1, y1): (f64, f64, f64),
     to_mm: &dyn Fn(f64) -> f64,
 ) -> anyhow::Result<()>
@@ -115,20 +120,24 @@ where
 {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow!("cannot draw the pile picture: {e}");
     root.fill(&WHITE).map_err(err)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(caption, ("sans-serif", 16))
-        .margin(10)
-        .x_label_area_size(30)
-        .y_label_area_size(45)
-        .build_cartesian_2d(x0..x1, 0.0..y1)
-        .map_err(err)?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc("across the view (mm)")
-        .y_desc("height (mm)")
-        .draw()
-        .map_err(err)?;
+    let mut builder = ChartBuilder::on(&root);
+    builder.margin(10);
+    if let Some(caption) = caption {
+        builder
+            .caption(caption, ("sans-serif", 16))
+            .x_label_area_size(30)
+            .y_label_area_size(45);
+    }
+    let mut chart = builder.build_cartesian_2d(x0..x1, 0.0..y1).map_err(err)?;
+    if caption.is_some() {
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc("across the view (mm)")
+            .y_desc("height (mm)")
+            .draw()
+            .map_err(err)?;
+    }
     // Discs: the radius in pixels from the chart's x scale.
     let (px_w, _) = chart.plotting_area().dim_in_pixel();
     let px_per_mm = f64::from(px_w) / (x1 - x0);
@@ -164,4 +173,69 @@ where
     }
     root.present().map_err(err)?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::repose::{simulated_repose, FitBand, Sphere};
+
+    /// A 35° cone of 2 mm spheres on a 40 mm base (rings every 2 mm), seen from 2 views.
+    fn cone_details() -> ReposeDetails {
+        const RADIUS_MM: f64 = 2.0;
+        const BASE_MM: f64 = 40.0;
+        let tan = 35f64.to_radians().tan();
+        let mut pile = Vec::new();
+        let mut ring = 0.0;
+        while ring <= BASE_MM {
+            let count = ((2.0 * std::f64::consts::PI * ring / RADIUS_MM) as usize).max(1);
+            for k in 0..count {
+                let a = 2.0 * std::f64::consts::PI * k as f64 / count as f64;
+                let mut z = RADIUS_MM;
+                while z <= (BASE_MM - ring) * tan {
+                    pile.push(Sphere {
+                        centre_mm: [ring * a.cos(), ring * a.sin(), z],
+                        radius_mm: RADIUS_MM,
+                    });
+                    z += RADIUS_MM;
+                }
+            }
+            ring += RADIUS_MM;
+        }
+        let measurement = simulated_repose(&pile, &[0.0, 90.0], 0.5, FitBand::default()).unwrap();
+        ReposeDetails {
+            pods: 0,
+            spheres: pile.len() as u32,
+            cylinder_diameter_mm: 0.0,
+            dt_s: 0.0,
+            lift_start_s: 0.0,
+            lift_end_s: 0.0,
+            end_s: 0.0,
+            steps: 0,
+            final_kinetic_energy_j: 0.0,
+            view_sd_deg: 0.0,
+            pile_height_mm: 0.0,
+            pile_width_mm: 0.0,
+            mm_per_px: 0.5,
+            measurement,
+            refused_views: Vec::new(),
+            pile,
+        }
+    }
+
+    #[test]
+    fn png_and_svg_pictures_are_written_without_a_panic() {
+        // The bitmap backend has no font: a PNG with a caption used to panic in plotters.
+        let details = cone_details();
+        let dir = tempfile::tempdir().unwrap();
+        let png = dir.path().join("pile.png");
+        write_pile_picture(&png, &details, "cone").unwrap();
+        let img = image::open(&png).unwrap();
+        assert_eq!(img.width(), WIDTH_PX + FRAME_PX);
+        let svg = dir.path().join("pile.svg");
+        write_pile_picture(&svg, &details, "cone").unwrap();
+        let text = std::fs::read_to_string(&svg).unwrap();
+        assert!(text.contains("cone: repose angle"), "caption missing");
+        assert!(write_pile_picture(&dir.path().join("pile.gif"), &details, "cone").is_err());
+    }
 }

@@ -13,7 +13,11 @@
 //!    exactly the extraction of `arachis lab repose PHOTO.png` ([`crate::repose`]: largest
 //!    blob, upper contour, both flanks fitted between 20 % and 80 % of the height). The
 //!    observable is the mean over views of the mean of both flanks: 2 × [`VIEW_COUNT`]
-//!    flank fits.
+//!    flank fits. A view whose silhouette has too few contour points on a flank (a pod
+//!    standing proud of a small pile can leave fewer than 5 in the fit band) is left out
+//!    and listed in [`ReposeDetails::refused_views`], as a bench operator retakes an
+//!    unusable photograph; fewer than half the views usable ([`min_usable_views`]) fails the run.
+//!    When every view is usable the mean is the one `simulated_repose` gives, bit for bit.
 //!
 //! Differences from the seed, and why:
 //! - All pods are placed at once instead of generated over 3 s: the settled packing before
@@ -35,13 +39,20 @@ use super::error::ExperimentError;
 use super::frames::FrameRecorder;
 use super::setup::*;
 use super::{Observation, ObservationDetails, RunOptions};
-use crate::repose::{simulated_repose, FitBand, SimulatedRepose, Sphere as PileSphere};
+use crate::repose::{
+    simulated_repose, FitBand, PileProblem, ReposeError, SimulatedRepose, Sphere as PileSphere,
+};
 use crate::study::Experiment;
 
 const EXPERIMENT: Experiment = Experiment::Repose;
 
 /// Side views of the pile, spread evenly over 180°.
 pub const VIEW_COUNT: usize = 12;
+/// Fewest usable side views for a measured pile: half of them (rounded up), 6 of
+/// [`VIEW_COUNT`].
+pub fn min_usable_views(views: usize) -> usize {
+    views.div_ceil(2)
+}
 /// Gap between neighbouring lattice cells beyond the pods' bounding spheres, mm.
 pub const CELL_GAP_MM: f64 = 1.0;
 /// Clearance between the lattice and the cylinder or floor, mm.
@@ -86,8 +97,11 @@ pub struct ReposeDetails {
     pub pile_width_mm: f64,
     /// Pixel size of the silhouettes, mm.
     pub mm_per_px: f64,
-    /// Every view: azimuth and both flank angles.
+    /// Every usable view: azimuth and both flank angles.
     pub measurement: SimulatedRepose,
+    /// Views whose flanks could not be fitted (azimuth, degrees, and why); they are left
+    /// out of the mean (module notes, step 4).
+    pub refused_views: Vec<(f64, String)>,
     /// Final sphere centres and radii, mm (for pictures).
     #[serde(skip)]
     pub pile: Vec<PileSphere>,
@@ -251,7 +265,7 @@ pub fn run(
     let azimuths: Vec<f64> = (0..VIEW_COUNT)
         .map(|i| 180.0 * i as f64 / VIEW_COUNT as f64)
         .collect();
-    let measurement = simulated_repose(&pile, &azimuths, mm_per_px, FitBand::default())?;
+    let (measurement, refused_views) = measure_views(&pile, &azimuths, mm_per_px)?;
     let angles: Vec<f64> = measurement
         .views
         .iter()
@@ -281,6 +295,7 @@ pub fn run(
         pile_width_mm: mean_of(&|a| a.width_mm),
         mm_per_px,
         measurement,
+        refused_views,
         pile,
     };
     let digest = w.digest();
@@ -295,6 +310,46 @@ pub fn run(
         vtk_series: vtk,
         details: ObservationDetails::Repose(details),
     })
+}
+
+/// Measures the pile from each azimuth (the `arachis lab repose` extraction, default fit
+/// band), leaving out views whose flanks cannot be fitted (too few contour points) and
+/// returning them with the reason; other errors, or fewer than [`min_usable_views`]
+/// usable views, fail. The mean is summed in azimuth order as `simulated_repose` sums it.
+pub fn measure_views(
+    pile: &[PileSphere],
+    azimuths: &[f64],
+    mm_per_px: f64,
+) -> Result<(SimulatedRepose, Vec<(f64, String)>), ExperimentError> {
+    let mut views = Vec::with_capacity(azimuths.len());
+    let mut refused = Vec::new();
+    for &azimuth in azimuths {
+        match simulated_repose(pile, &[azimuth], mm_per_px, FitBand::default()) {
+            Ok(m) => views.extend(m.views),
+            Err(
+                e @ ReposeError::Pile {
+                    problem: PileProblem::TooFewPoints { .. },
+                    ..
+                },
+            ) => refused.push((azimuth, e.to_string())),
+            Err(e) => return Err(e.into()),
+        }
+    }
+    let needed = min_usable_views(azimuths.len());
+    if views.len() < needed {
+        let reasons: Vec<&str> = refused.iter().map(|(_, r)| r.as_str()).collect();
+        return Err(ExperimentError::Study {
+            experiment: EXPERIMENT.name(),
+            reason: format!(
+                "only {} of {} side views of the pile could be measured (at least {needed} needed): {}",
+                views.len(),
+                azimuths.len(),
+                reasons.join("; ")
+            ),
+        });
+    }
+    let angle_deg = views.iter().map(|v| v.angle.angle_deg).sum::<f64>() / views.len() as f64;
+    Ok((SimulatedRepose { angle_deg, views }, refused))
 }
 
 /// Cell centres of one layer: concentric rings from the reachable radius `reach` inwards,
@@ -346,5 +401,49 @@ mod tests {
             }
         }
         assert_eq!(layer_points(36.5, 36.0).len(), 7);
+    }
+
+    /// Spheres of `radius` on rings every `radius` under a cone of `angle_deg` on `base` mm.
+    fn cone(angle_deg: f64, base: f64, radius: f64) -> Vec<PileSphere> {
+        let tan = angle_deg.to_radians().tan();
+        let mut pile = Vec::new();
+        let mut ring = 0.0;
+        while ring <= base {
+            let count = ((2.0 * PI * ring / radius) as usize).max(1);
+            for k in 0..count {
+                let a = 2.0 * PI * k as f64 / count as f64;
+                let mut z = radius;
+                while z <= (base - ring) * tan {
+                    pile.push(PileSphere {
+                        centre_mm: [ring * a.cos(), ring * a.sin(), z],
+                        radius_mm: radius,
+                    });
+                    z += radius;
+                }
+            }
+            ring += radius;
+        }
+        pile
+    }
+
+    #[test]
+    fn measure_views_matches_simulated_repose_and_refuses_a_tower() {
+        let azimuths = [0.0, 45.0, 90.0, 135.0];
+        let pile = cone(33.0, 40.0, 2.0);
+        let (m, refused) = measure_views(&pile, &azimuths, 0.5).unwrap();
+        let all = simulated_repose(&pile, &azimuths, 0.5, FitBand::default()).unwrap();
+        assert!(refused.is_empty());
+        assert_eq!(m.angle_deg.to_bits(), all.angle_deg.to_bits());
+        // A single column of spheres has no flank in any view: every view is refused.
+        let tower: Vec<PileSphere> = (0..10)
+            .map(|i| PileSphere {
+                centre_mm: [0.0, 0.0, 2.0 + 4.0 * i as f64],
+                radius_mm: 2.0,
+            })
+            .collect();
+        let err = measure_views(&tower, &azimuths, 0.5)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("only 0 of 4 side views"), "{err}");
     }
 }
