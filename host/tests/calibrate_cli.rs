@@ -186,3 +186,28 @@ fn jobs_zero_is_refused() {
     ]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+/// A target far outside what the model gives in the seed's ranges (60° instead of 31.06°)
+/// completes the calibration and reports the missed validation: exit status 0 by
+/// default, 2 with `--strict`.
+#[test]
+fn a_missed_validation_is_reported_and_fails_only_with_strict() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(Path::new(ROOT).join(STUDY)).unwrap();
+    let unreachable = text.replacen("mean = 31.06 ", "mean = 60.0 ", 1);
+    assert_ne!(text, unreachable, "the study's target line moved");
+    let study = dir.path().join("study.toml");
+    std::fs::write(&study, unreachable).unwrap();
+    let study = study.to_str().unwrap();
+    let out = dir.path().join("out");
+    let out = out.to_str().unwrap();
+    let o = arachis(&calibrate_args(study, out));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(stdout.contains("validation failed"), "{stdout}");
+    let mut strict = calibrate_args(study, out);
+    strict.push("--strict");
+    let o = arachis(&strict);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("validation failed"));
+}

@@ -51,6 +51,11 @@ pub struct Args {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Exit with status 2 when the validation run misses its limit (for scripts and CI).
+    /// Without it the miss is printed and written to the report, and the exit status is 0:
+    /// a completed calibration that misses its target is a finding, not a crash.
+    #[arg(long)]
+    pub strict: bool,
     /// Which simulator answers the runs.
     #[arg(long, value_enum, default_value = "dem")]
     pub simulator: SimulatorChoice,
@@ -177,11 +182,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         out.join(crate::calibrate::report::REPORT_FILE).display()
     );
     if !v.passed {
-        anyhow::bail!(
+        let miss = format!(
             "validation failed: relative error {:.3} % exceeds {} %",
-            v.relative_error_pct,
-            v.max_relative_error_pct
+            v.relative_error_pct, v.max_relative_error_pct
         );
+        if args.strict {
+            anyhow::bail!(miss);
+        }
+        println!("{miss} (see the report; --strict makes this an error)");
     }
     Ok(())
 }
