@@ -25,6 +25,8 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{ensure, Context};
+use arachis_core::prelude::*;
+use arachis_core::units::{LENGTH_M_TO_MM, VELOCITY_M_S_TO_MM_MS};
 
 use crate::io::write_atomic;
 
@@ -44,6 +46,32 @@ pub struct ParticleFrame {
 }
 
 impl ParticleFrame {
+    /// The spheres of `world` now, in SI units. A sphere's velocity is that of its centre,
+    /// v + ω × r with r its offset from the body's centre of mass (exact for clump spheres).
+    pub fn from_world<S: Scalar>(world: &World<'_, S>) -> Self {
+        let bodies = world.bodies();
+        let spheres = world.spheres();
+        let mm_to_m = |v: [f64; 3]| v.map(|x| x / LENGTH_M_TO_MM);
+        ParticleFrame {
+            time_s: world.time_s(),
+            positions_m: spheres
+                .iter()
+                .map(|s| mm_to_m(s.position.to_f64()))
+                .collect(),
+            radii_m: spheres.iter().map(|s| s.radius_m()).collect(),
+            velocities_m_s: spheres
+                .iter()
+                .map(|s| {
+                    let b = &bodies[s.body as usize];
+                    let arm = s.position - b.position;
+                    let v = (b.velocity + b.angular_velocity.cross(arm)).to_f64();
+                    v.map(|x| x / VELOCITY_M_S_TO_MM_MS)
+                })
+                .collect(),
+            body_ids: spheres.iter().map(|s| s.body).collect(),
+        }
+    }
+
     fn check(&self) -> anyhow::Result<()> {
         let n = self.positions_m.len();
         ensure!(

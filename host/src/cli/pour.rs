@@ -23,7 +23,7 @@ use arachis_core::scenario::bench_bed::{self, BenchBed};
 use arachis_core::scenario::materials::POD;
 use arachis_core::scenario::measure::{bed_height_mm, com_height_mm};
 use arachis_core::timestep::{max_stable_dt_s, rayleigh_time_s, MAX_RAYLEIGH_FRACTION};
-use arachis_core::units::{ENERGY_J_TO_MJ, LENGTH_M_TO_MM, TIME_S_TO_MS, VELOCITY_M_S_TO_MM_MS};
+use arachis_core::units::{ENERGY_J_TO_MJ, LENGTH_M_TO_MM, TIME_S_TO_MS};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
@@ -183,28 +183,6 @@ fn frame_steps(args: &Args) -> Vec<u64> {
     (0..k).map(|i| i * args.steps / (k - 1)).collect()
 }
 
-/// The spheres of `world` as a VTK frame, SI units. A sphere's velocity is its body's
-/// centre-of-mass velocity, exact for the bed's free spheres (a clump sphere would also need
-/// ω × offset).
-fn capture<S: Scalar>(world: &World<'_, S>) -> ParticleFrame {
-    let spheres = world.spheres();
-    let bodies = world.bodies();
-    let m = |v: [f64; 3]| v.map(|x| x / LENGTH_M_TO_MM);
-    ParticleFrame {
-        time_s: world.time_s(),
-        positions_m: spheres.iter().map(|s| m(s.position.to_f64())).collect(),
-        radii_m: spheres.iter().map(|s| s.radius_m()).collect(),
-        velocities_m_s: spheres
-            .iter()
-            .map(|s| {
-                let v = bodies[s.body as usize].velocity.to_f64();
-                v.map(|x| x / VELOCITY_M_S_TO_MM_MS)
-            })
-            .collect(),
-        body_ids: spheres.iter().map(|s| s.body).collect(),
-    }
-}
-
 fn progress_bar(steps: u64) -> ProgressBar {
     // The default draw target is stderr, hidden when stderr is not a terminal.
     let bar = ProgressBar::new(steps);
@@ -236,7 +214,7 @@ fn pour<S: Scalar>(args: &Args) -> anyhow::Result<(PourReport, Vec<ParticleFrame
     let mut done = 0;
     loop {
         while next_frame.peek() == Some(&done) {
-            frames.push(capture(&world));
+            frames.push(ParticleFrame::from_world(&world));
             next_frame.next();
         }
         if done == args.steps {

@@ -21,7 +21,7 @@ use std::time::Instant;
 use anyhow::{ensure, Context};
 use arachis_core::prelude::*;
 use arachis_core::scenario::pull_off::{self, PullOff};
-use arachis_core::units::{LENGTH_M_TO_MM, VELOCITY_M_S_TO_MM_MS};
+use arachis_core::units::LENGTH_M_TO_MM;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
@@ -179,28 +179,6 @@ fn scenario(args: &Args) -> anyhow::Result<PullOff> {
     Ok(s)
 }
 
-/// The spheres as a VTK frame, SI units (sphere velocity: v + ω × offset of its body).
-fn capture<S: Scalar>(world: &World<'_, S>) -> ParticleFrame {
-    let bodies = world.bodies();
-    let spheres = world.spheres();
-    let m = |v: [f64; 3]| v.map(|x| x / LENGTH_M_TO_MM);
-    ParticleFrame {
-        time_s: world.time_s(),
-        positions_m: spheres.iter().map(|s| m(s.position.to_f64())).collect(),
-        radii_m: spheres.iter().map(|s| s.radius_m()).collect(),
-        velocities_m_s: spheres
-            .iter()
-            .map(|s| {
-                let b = &bodies[s.body as usize];
-                let arm = s.position - b.position;
-                let v = (b.velocity + b.angular_velocity.cross(arm)).to_f64();
-                v.map(|x| x / VELOCITY_M_S_TO_MM_MS)
-            })
-            .collect(),
-        body_ids: spheres.iter().map(|s| s.body).collect(),
-    }
-}
-
 type Outcome = (Report, Vec<(f64, f64)>, Vec<ParticleFrame>);
 
 fn pull<S: Scalar>(args: &Args, scenario: &PullOff) -> anyhow::Result<Outcome> {
@@ -217,7 +195,7 @@ fn pull<S: Scalar>(args: &Args, scenario: &PullOff) -> anyhow::Result<Outcome> {
     let mut frames = Vec::new();
     let frame_every = args.frame_every.max(1);
     if args.vtk.is_some() {
-        frames.push(capture(&world));
+        frames.push(ParticleFrame::from_world(&world));
     }
     // Run in chunks so the bar moves and frames are taken; the scenario stops at the break.
     let mut result = None;
@@ -235,7 +213,7 @@ fn pull<S: Scalar>(args: &Args, scenario: &PullOff) -> anyhow::Result<Outcome> {
         bar.set_position(done);
         let last = r.break_step.is_some() || done == args.max_steps;
         if args.vtk.is_some() && (done % frame_every == 0 || last) {
-            frames.push(capture(&world));
+            frames.push(ParticleFrame::from_world(&world));
         }
         let finished = r.break_step.is_some();
         result = Some(match result {

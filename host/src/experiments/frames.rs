@@ -35,26 +35,7 @@ impl FrameRecorder {
         if !self.active() {
             return;
         }
-        const M_PER_MM: f64 = 1e-3;
-        let spheres = w.spheres();
-        let bodies = w.bodies();
-        self.frames.push(ParticleFrame {
-            time_s: w.time_s(),
-            positions_m: spheres
-                .iter()
-                .map(|s| s.position.to_f64().map(|x| x * M_PER_MM))
-                .collect(),
-            radii_m: spheres
-                .iter()
-                .map(|s| s.radius.to_f64() * M_PER_MM)
-                .collect(),
-            // The body's centre-of-mass velocity (mm/ms = m/s), rotation left out.
-            velocities_m_s: spheres
-                .iter()
-                .map(|s| bodies[s.body as usize].velocity.to_f64())
-                .collect(),
-            body_ids: spheres.iter().map(|s| s.body).collect(),
-        });
+        self.frames.push(ParticleFrame::from_world(w));
     }
 
     /// Writes the series; returns the `.pvd` path when recording.

@@ -196,28 +196,6 @@ fn teeth(machine: &Machine, axis_z_m: f64, phase: f64) -> Vec<[f64; 3]> {
     out
 }
 
-/// The spheres as a VTK frame, SI units (sphere velocity: v + ω × offset of its body).
-fn capture<S: Scalar>(world: &World<'_, S>) -> ParticleFrame {
-    let bodies = world.bodies();
-    let spheres = world.spheres();
-    let m = |v: [f64; 3]| v.map(|x| x / LENGTH_M_TO_MM);
-    ParticleFrame {
-        time_s: world.time_s(),
-        positions_m: spheres.iter().map(|s| m(s.position.to_f64())).collect(),
-        radii_m: spheres.iter().map(|s| s.radius_m()).collect(),
-        velocities_m_s: spheres
-            .iter()
-            .map(|s| {
-                let b = &bodies[s.body as usize];
-                let arm = s.position - b.position;
-                let v = (b.velocity + b.angular_velocity.cross(arm)).to_f64();
-                v.map(|x| x / VELOCITY_M_S_TO_MM_MS)
-            })
-            .collect(),
-        body_ids: spheres.iter().map(|s| s.body).collect(),
-    }
-}
-
 /// Union–find root with path halving.
 fn root(parent: &mut [usize], mut i: usize) -> usize {
     while parent[i] != i {
@@ -379,7 +357,7 @@ pub fn run_pass<S: Scalar>(
     let mut fates: Vec<Option<Fate>> = vec![None; placed.pods.len()];
     let mut frames = Vec::new();
     if frame_every.is_some() {
-        frames.push(capture(&w));
+        frames.push(ParticleFrame::from_world(&w));
     }
     let g = -GRAVITY_M_S2[2];
     let m_of = |mm: f64| mm / LENGTH_M_TO_MM;
@@ -393,7 +371,7 @@ pub fn run_pass<S: Scalar>(
         if let Some(every) = frame_every {
             let done = w.step_count();
             if done % every < chunk || done == steps {
-                frames.push(capture(&w));
+                frames.push(ParticleFrame::from_world(&w));
             }
         }
         let on = attached_to(&w, n_plant_bodies, placed.clamp);
