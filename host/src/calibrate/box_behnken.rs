@@ -13,13 +13,11 @@
 //! with advanced random seeds so they measure pure error. The model of `[plan.model]` is
 //! fitted and tested with `stats::analyze` (Type III SS, lack of fit against pure error).
 
-use std::collections::BTreeMap;
-
 use serde::Serialize;
 
 use super::screening::FactorInfo;
 use super::steepest_ascent::SteepestAscent;
-use super::{replicate_indices, CalibrateError, PlannedRun, RunRecord, Runner, TargetInfo};
+use super::{planned_runs, CalibrateError, RunRecord, Runner, TargetInfo};
 use crate::doe::box_behnken;
 use crate::optimize::Polynomial;
 use crate::stats::{analyze, Anova, CodedDesign, ModelOrder};
@@ -156,22 +154,7 @@ pub fn run(
             source,
         }
     })?;
-    let replicates = replicate_indices(&design.coded);
-    let planned: Vec<PlannedRun> = design
-        .coded
-        .iter()
-        .zip(replicates)
-        .enumerate()
-        .map(|(i, (row, replicate))| PlannedRun {
-            coded: row.clone(),
-            values: factors
-                .iter()
-                .zip(design.actual_row(i))
-                .map(|(f, v)| (f.name.clone(), v))
-                .collect::<BTreeMap<_, _>>(),
-            replicate,
-        })
-        .collect();
+    let planned = planned_runs(&factors, &design);
     let runs = runner.run_batch(STAGE, target.experiment, &target.condition, &planned)?;
     let order = model_order(plan.model.order);
     let labels: Vec<String> = factors.iter().map(|f| f.label.clone()).collect();

@@ -162,6 +162,30 @@ pub fn replicate_indices(rows: &[Vec<f64>]) -> Vec<u32> {
         .collect()
 }
 
+/// The runs of `design` (real factors `factors`, in design-column order), replicates
+/// numbered by [`replicate_indices`].
+pub fn planned_runs(
+    factors: &[screening::FactorInfo],
+    design: &crate::doe::Design,
+) -> Vec<PlannedRun> {
+    let replicates = replicate_indices(&design.coded);
+    design
+        .coded
+        .iter()
+        .zip(replicates)
+        .enumerate()
+        .map(|(i, (row, replicate))| PlannedRun {
+            coded: row.clone(),
+            values: factors
+                .iter()
+                .zip(design.actual_row(i))
+                .map(|(f, v)| (f.name.clone(), v))
+                .collect::<BTreeMap<_, _>>(),
+            replicate,
+        })
+        .collect()
+}
+
 /// What the stages share: the study, the simulator, the cache and the worker pool.
 pub struct Runner<'a> {
     study: &'a Study,

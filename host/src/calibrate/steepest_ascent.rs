@@ -14,12 +14,10 @@
 //! ψ = 1.35 %); the report says when that is the last point of the path, where the target
 //! may lie beyond it.
 
-use std::collections::BTreeMap;
-
 use serde::Serialize;
 
 use super::screening::{FactorInfo, Screening};
-use super::{replicate_indices, CalibrateError, PlannedRun, RunRecord, Runner, TargetInfo};
+use super::{planned_runs, CalibrateError, RunRecord, Runner, TargetInfo};
 use crate::doe::{steepest_ascent, Factor};
 use crate::stats::relative_error_percent;
 use crate::study::parameters::lookup;
@@ -137,22 +135,7 @@ pub fn run(
         .iter()
         .map(|g| plan.step_coded * g / largest)
         .collect();
-    let replicates = replicate_indices(&design.coded);
-    let planned: Vec<PlannedRun> = design
-        .coded
-        .iter()
-        .zip(replicates)
-        .enumerate()
-        .map(|(i, (row, replicate))| PlannedRun {
-            coded: row.clone(),
-            values: factors
-                .iter()
-                .zip(design.actual_row(i))
-                .map(|(f, v)| (f.name.clone(), v))
-                .collect::<BTreeMap<_, _>>(),
-            replicate,
-        })
-        .collect();
+    let planned = planned_runs(&factors, &design);
     let runs = runner.run_batch(STAGE, target.experiment, &target.condition, &planned)?;
     let errors: Vec<f64> = runs
         .iter()
