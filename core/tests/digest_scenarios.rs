@@ -15,9 +15,11 @@
 //! path of a per-body dump of the new state (diff it against a dump of the old build to find
 //! the first body that diverged).
 
+mod common;
 use arachis_core::bond::{Bond, BondBreak, BondStorage};
 use arachis_core::prelude::*;
 use arachis_core::scenario::{BenchBed, ClumpSlide, MovingWallPile, PullOff};
+use common::Owned;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
@@ -48,37 +50,6 @@ const PULL_OFF_STEPS: u64 = 5_000;
 /// the junction (measured −3.7e-4). The gripper starts at full speed, so the undamped stalk
 /// rings; its force amplitude is at most v·√(k·m) ≈ 0.08 N, 2 % of 3.55 N.
 const PULL_OFF_FORCE_TOL: f64 = 0.01;
-
-/// Owned arenas for one world (the core itself never allocates).
-struct Arenas<S: Scalar> {
-    bodies: Vec<Body<S>>,
-    spheres: Vec<Sphere<S>>,
-    contacts: Vec<ContactSlot<S>>,
-    index: Vec<u32>,
-    cells: Vec<u32>,
-}
-
-impl<S: Scalar> Arenas<S> {
-    fn new(l: StorageLengths) -> Self {
-        Arenas {
-            bodies: vec![Body::default(); l.bodies],
-            spheres: vec![Sphere::default(); l.spheres],
-            contacts: vec![ContactSlot::default(); l.contacts],
-            index: vec![0; l.sphere_index],
-            cells: vec![0; l.cells],
-        }
-    }
-
-    fn storage(&mut self) -> Storage<'_, S> {
-        Storage {
-            bodies: &mut self.bodies,
-            spheres: &mut self.spheres,
-            contacts: &mut self.contacts,
-            sphere_index: &mut self.index,
-            cells: &mut self.cells,
-        }
-    }
-}
 
 /// Live contacts split into (sphere–sphere, sphere–wall).
 fn contact_kinds<S: Scalar>(world: &World<'_, S>) -> (u32, u32) {
@@ -190,7 +161,7 @@ fn check_golden(scenario: &str, about: &str, world: &World<'_, Fx>) {
 #[test]
 fn bench_bed_pour_matches_golden_digest() {
     let bed = BenchBed::design();
-    let mut arenas = Arenas::<Fx>::new(bed.storage_lengths());
+    let mut arenas = Owned::<Fx>::with_lengths(bed.storage_lengths());
     let mut world = bed.build(arenas.storage()).unwrap();
     world.run(POUR_STEPS).unwrap();
     check_golden(
@@ -212,7 +183,7 @@ fn bench_bed_pour_matches_golden_digest() {
 #[test]
 fn clump_slide_matches_golden_digest() {
     let scenario = ClumpSlide::default();
-    let mut arenas = Arenas::<Fx>::new(scenario.storage_lengths());
+    let mut arenas = Owned::<Fx>::with_lengths(scenario.storage_lengths());
     let mut world = scenario.build(arenas.storage()).unwrap();
     let start: Vec<[f64; 3]> = world.bodies().iter().map(|b| b.position.to_f64()).collect();
     // Count the steps on which clumps touch each other, to show that they do collide.
@@ -238,7 +209,7 @@ fn clump_slide_matches_golden_digest() {
 #[test]
 fn moving_wall_pile_matches_golden_digest() {
     let scenario = MovingWallPile::default();
-    let mut arenas = Arenas::<Fx>::new(scenario.storage_lengths());
+    let mut arenas = Owned::<Fx>::with_lengths(scenario.storage_lengths());
     let mut world = scenario.build(arenas.storage()).unwrap();
     let blade_start = world.walls()[1].shape;
     world.run(BLADE_STEPS).unwrap();
@@ -261,7 +232,7 @@ fn moving_wall_pile_matches_golden_digest() {
 #[test]
 fn pull_off_matches_golden_digest() {
     let scenario = PullOff::default();
-    let mut arenas = Arenas::<Fx>::new(scenario.storage_lengths());
+    let mut arenas = Owned::<Fx>::with_lengths(scenario.storage_lengths());
     let mut bonds = vec![Bond::<Fx>::default(); scenario.bond_capacity()];
     let mut log = vec![BondBreak::<Fx>::default(); scenario.bond_capacity()];
     let mut world = scenario
@@ -304,7 +275,7 @@ fn short_pile(seed_flip: u64, nudge_body_0: bool) -> (u64, Vec<String>) {
         settle_steps: 1_000,
         seed: MovingWallPile::default().seed ^ seed_flip,
     };
-    let mut arenas = Arenas::<Fx>::new(scenario.storage_lengths());
+    let mut arenas = Owned::<Fx>::with_lengths(scenario.storage_lengths());
     let mut world = scenario.build(arenas.storage()).unwrap();
     if nudge_body_0 {
         // Add one least-significant bit (2⁻³² m/s) to body 0's x velocity: the smallest

@@ -29,6 +29,7 @@
 //! ignored in debug builds, run by `scripts/test-all.sh` in release. `--nocapture` shows the
 //! table.
 
+mod common;
 use arachis_core::prelude::*;
 use arachis_core::scenario::bench_bed::{
     DEFAULT_SEED, DESIGN_SETTLE_STEPS, SETTLED_KINETIC_ENERGY_J,
@@ -36,43 +37,13 @@ use arachis_core::scenario::bench_bed::{
 use arachis_core::scenario::measure::{bed_height_mm, com_height_mm};
 use arachis_core::scenario::BenchBed;
 use arachis_core::units::ENERGY_J_TO_MJ;
+use common::Owned;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::Instant;
 
 /// Largest accepted relative difference of bed and centre-of-mass height (issue 2).
 const MAX_RELATIVE_DIFFERENCE: f64 = 0.005;
-
-/// Owned arenas for one world (the core itself never allocates).
-struct Arenas<S: Scalar> {
-    bodies: Vec<Body<S>>,
-    spheres: Vec<Sphere<S>>,
-    contacts: Vec<ContactSlot<S>>,
-    index: Vec<u32>,
-    cells: Vec<u32>,
-}
-
-impl<S: Scalar> Arenas<S> {
-    fn new(l: StorageLengths) -> Self {
-        Arenas {
-            bodies: vec![Body::default(); l.bodies],
-            spheres: vec![Sphere::default(); l.spheres],
-            contacts: vec![ContactSlot::default(); l.contacts],
-            index: vec![0; l.sphere_index],
-            cells: vec![0; l.cells],
-        }
-    }
-
-    fn storage(&mut self) -> Storage<'_, S> {
-        Storage {
-            bodies: &mut self.bodies,
-            spheres: &mut self.spheres,
-            contacts: &mut self.contacts,
-            sphere_index: &mut self.index,
-            cells: &mut self.cells,
-        }
-    }
-}
 
 /// The figures of one settled bed.
 #[derive(Debug, Clone, Copy)]
@@ -98,7 +69,7 @@ fn settle<S: Scalar>(seed: u64, steps: u64) -> Settled {
         seed,
         ..BenchBed::design()
     };
-    let mut arenas = Arenas::<S>::new(bed.storage_lengths());
+    let mut arenas = Owned::<S>::with_lengths(bed.storage_lengths());
     let started = Instant::now();
     let mut world = bed.build(arenas.storage()).unwrap();
     world.run(steps).unwrap();

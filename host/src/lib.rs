@@ -4,6 +4,7 @@
 //! The `arachis` command-line program in `src/main.rs` is a thin face over these modules.
 #![deny(missing_docs)]
 
+pub mod arena;
 pub mod calibrate;
 pub mod cli;
 pub mod diagnose;

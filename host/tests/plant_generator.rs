@@ -3,9 +3,9 @@
 //! gravity with its root clamped; bad topologies (dangling stalk, bond radius ≤ 0, unknown
 //! part or kind) are clear errors.
 
+use arachis::arena::{OwnedBonds, OwnedStorage};
 use arachis::plant::topology::Kind;
 use arachis::plant::{generate, PlantError, Topology};
-use arachis_core::bond::{Bond, BondBreak, BondStorage};
 use arachis_core::prelude::*;
 
 const SMALL: &str = include_str!("../../testdata/peanut-plant/topology-small.toml");
@@ -46,26 +46,10 @@ fn small_plant_has_the_expected_parts_and_bonds() {
 fn small_plant_loads_and_steps_with_its_root_clamped() {
     let m = generate(&Topology::from_toml(SMALL).unwrap()).unwrap();
     let l = StorageLengths::for_spheres(m.bodies.len(), m.spheres.len());
-    let mut bodies = vec![Body::<Fx>::default(); l.bodies];
-    let mut spheres = vec![Sphere::<Fx>::default(); l.spheres];
-    let mut contacts = vec![ContactSlot::<Fx>::default(); l.contacts];
-    let mut index = vec![0u32; l.sphere_index];
-    let mut cells = vec![0u32; l.cells];
-    let mut bonds = vec![Bond::<Fx>::default(); m.bonds.len()];
-    let mut log = vec![BondBreak::<Fx>::default(); m.bonds.len()];
-    let mut w = World::new(Storage {
-        bodies: &mut bodies,
-        spheres: &mut spheres,
-        contacts: &mut contacts,
-        sphere_index: &mut index,
-        cells: &mut cells,
-    })
-    .unwrap();
-    w.attach_bond_storage(BondStorage {
-        bonds: &mut bonds,
-        log: &mut log,
-    })
-    .unwrap();
+    let mut arena = OwnedStorage::<Fx>::new(l);
+    let mut bond_arena = OwnedBonds::<Fx>::new(m.bonds.len());
+    let mut w = World::new(arena.storage()).unwrap();
+    w.attach_bond_storage(bond_arena.storage()).unwrap();
     let plant = w
         .add_material(MaterialSpec {
             youngs_modulus_pa: 118e6,

@@ -145,21 +145,8 @@ fn the_command_runs_exactly_the_core_bench_bed_scenario() {
     use arachis_core::prelude::*;
     use arachis_core::scenario::BenchBed;
     let bed = BenchBed::with_particles(PARTICLES as u32);
-    let l = bed.storage_lengths();
-    let mut bodies = vec![Body::<Fx>::default(); l.bodies];
-    let mut spheres = vec![Sphere::<Fx>::default(); l.spheres];
-    let mut contacts = vec![ContactSlot::<Fx>::default(); l.contacts];
-    let mut index = vec![0u32; l.sphere_index];
-    let mut cells = vec![0u32; l.cells];
-    let mut world = bed
-        .build(Storage {
-            bodies: &mut bodies,
-            spheres: &mut spheres,
-            contacts: &mut contacts,
-            sphere_index: &mut index,
-            cells: &mut cells,
-        })
-        .unwrap();
+    let mut arena = arachis::arena::OwnedStorage::<Fx>::new(bed.storage_lengths());
+    let mut world = bed.build(arena.storage()).unwrap();
     world.run(STEPS).unwrap();
     let expected = format!("{:016x}", world.digest());
     assert_eq!(pour(&[])["digest"].as_str(), Some(expected.as_str()));

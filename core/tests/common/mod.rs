@@ -14,7 +14,9 @@ pub struct Owned<S: Scalar> {
 
 impl<S: Scalar> Owned<S> {
     pub fn new(bodies: usize, spheres: usize) -> Self {
-        let l = StorageLengths::for_spheres(bodies, spheres);
+        Self::with_lengths(StorageLengths::for_spheres(bodies, spheres))
+    }
+    pub fn with_lengths(l: StorageLengths) -> Self {
         Owned {
             bodies: vec![Body::default(); l.bodies],
             spheres: vec![Sphere::default(); l.spheres],

@@ -27,6 +27,7 @@ use arachis_core::units::{ENERGY_J_TO_MJ, LENGTH_M_TO_MM, TIME_S_TO_MS};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
+use crate::arena::OwnedStorage;
 use crate::vtk::{write_series, ParticleFrame};
 
 /// Steps between progress-bar updates: often enough to look live, rarely enough to cost
@@ -139,37 +140,6 @@ fn check_args(args: &Args) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Owned arenas for one world (the core never allocates; the host gives it `Vec`s).
-struct Arenas<S: Scalar> {
-    bodies: Vec<Body<S>>,
-    spheres: Vec<Sphere<S>>,
-    contacts: Vec<ContactSlot<S>>,
-    index: Vec<u32>,
-    cells: Vec<u32>,
-}
-
-impl<S: Scalar> Arenas<S> {
-    fn new(lengths: StorageLengths) -> Self {
-        Arenas {
-            bodies: vec![Body::default(); lengths.bodies],
-            spheres: vec![Sphere::default(); lengths.spheres],
-            contacts: vec![ContactSlot::default(); lengths.contacts],
-            index: vec![0; lengths.sphere_index],
-            cells: vec![0; lengths.cells],
-        }
-    }
-
-    fn storage(&mut self) -> Storage<'_, S> {
-        Storage {
-            bodies: &mut self.bodies,
-            spheres: &mut self.spheres,
-            contacts: &mut self.contacts,
-            sphere_index: &mut self.index,
-            cells: &mut self.cells,
-        }
-    }
-}
-
 /// Steps after which a VTK frame is taken: `frames` states evenly spaced over `0..=steps`
 /// (only the final state for one frame). Empty without `--vtk`.
 fn frame_steps(args: &Args) -> Vec<u64> {
@@ -200,7 +170,7 @@ fn pour<S: Scalar>(args: &Args) -> anyhow::Result<(PourReport, Vec<ParticleFrame
         particles: args.particles,
         seed: args.seed,
     };
-    let mut arenas = Arenas::<S>::new(bed.storage_lengths());
+    let mut arenas = OwnedStorage::<S>::new(bed.storage_lengths());
     let bar = progress_bar(args.steps);
     bar.set_message("inserting");
     let started = Instant::now();

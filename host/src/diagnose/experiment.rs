@@ -26,6 +26,7 @@ use arachis_core::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::params::ModelParams;
+use crate::arena::OwnedStorage;
 
 /// Sphere radius, m.
 pub const SPHERE_RADIUS_M: f64 = 0.004;
@@ -150,35 +151,9 @@ fn e_star_pa(p: &ModelParams) -> f64 {
     1.0 / (part(&pod(p)) + part(&STEEL))
 }
 
-/// Owned storage for a one-sphere world.
-struct Arena {
-    bodies: Vec<Body<Fx>>,
-    spheres: Vec<Sphere<Fx>>,
-    contacts: Vec<ContactSlot<Fx>>,
-    index: Vec<u32>,
-    cells: Vec<u32>,
-}
-
-impl Arena {
-    fn new() -> Self {
-        let l = StorageLengths::for_spheres(1, 1);
-        Arena {
-            bodies: vec![Body::default(); l.bodies],
-            spheres: vec![Sphere::default(); l.spheres],
-            contacts: vec![ContactSlot::default(); l.contacts],
-            index: vec![0; l.sphere_index],
-            cells: vec![0; l.cells],
-        }
-    }
-    fn storage(&mut self) -> Storage<'_, Fx> {
-        Storage {
-            bodies: &mut self.bodies,
-            spheres: &mut self.spheres,
-            contacts: &mut self.contacts,
-            sphere_index: &mut self.index,
-            cells: &mut self.cells,
-        }
-    }
+/// Storage for the one-sphere worlds of these experiments.
+fn one_sphere_arena() -> OwnedStorage<Fx> {
+    OwnedStorage::new(StorageLengths::for_spheres(1, 1))
 }
 
 /// Core errors (set-up or step) as `anyhow` errors with their message.
@@ -188,7 +163,7 @@ fn core_err(e: impl std::fmt::Display) -> anyhow::Error {
 
 /// A pod sphere over a steel floor (z = 0), normal terms only, effects from `p`.
 fn floor_world<'a>(
-    a: &'a mut Arena,
+    a: &'a mut OwnedStorage<Fx>,
     p: &ModelParams,
     restitution: f64,
     z_m: f64,
@@ -246,7 +221,7 @@ fn hertz_contact_time_s(p: &ModelParams, v: f64) -> f64 {
 
 fn rebound(height_m: f64, p: &ModelParams) -> Result<f64> {
     let v = (2.0 * GRAVITY_M_S2 * height_m).sqrt();
-    let mut a = Arena::new();
+    let mut a = one_sphere_arena();
     // Start 0.1 µm above the floor so the first step is contact-free.
     let mut w =
         floor_world(&mut a, p, p.restitution, SPHERE_RADIUS_M + 1e-7, -v).map_err(core_err)?;
@@ -272,7 +247,7 @@ fn press(load_n: f64, p: &ModelParams, fraction: f64) -> Result<f64> {
     let r = SPHERE_RADIUS_M;
     // Start at the Hertz overlap of the load, at rest.
     let alpha0 = (3.0 * load_n / (4.0 * es * r.sqrt())).powf(2.0 / 3.0);
-    let mut a = Arena::new();
+    let mut a = one_sphere_arena();
     let mut w =
         floor_world(&mut a, p, PRESS_SETTLING_RESTITUTION, r - alpha0, 0.0).map_err(core_err)?;
     w.set_gravity_m_s2([0.0, 0.0, -fraction * load_n / m])
@@ -289,7 +264,7 @@ fn press(load_n: f64, p: &ModelParams, fraction: f64) -> Result<f64> {
 }
 
 fn fall(height_m: f64, p: &ModelParams) -> Result<f64> {
-    let mut a = Arena::new();
+    let mut a = one_sphere_arena();
     // The floor sits far below; the sphere never reaches it.
     let z0 = SPHERE_RADIUS_M + height_m + 1.0;
     let mut w = floor_world(&mut a, p, p.restitution, z0, 0.0).map_err(core_err)?;

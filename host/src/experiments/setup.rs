@@ -14,6 +14,7 @@ use arachis_core::scenario::SplitMix64;
 use super::error::ExperimentError;
 use super::templates::{PodTemplate, TemplateCache, TemplateKey, TemplateSet};
 use super::values::{check_values, ModeName, ParameterValues};
+use crate::arena::OwnedStorage;
 use crate::shapes::{PodKind, ShapeMix};
 use crate::study::plan::{Mode, Simulation};
 use crate::study::{Experiment, RunSpec, Study};
@@ -199,37 +200,20 @@ impl RunInputs {
 }
 
 /// Owned storage for one core world.
-pub struct Arena {
-    bodies: Vec<Body<Fx>>,
-    spheres: Vec<arachis_core::body::Sphere<Fx>>,
-    contacts: Vec<ContactSlot<Fx>>,
-    index: Vec<u32>,
-    cells: Vec<u32>,
-}
+pub struct Arena(OwnedStorage<Fx>);
 
 impl Arena {
     /// Room for `bodies` bodies made of `spheres` spheres in all.
     pub fn new(bodies: usize, spheres: usize) -> Self {
-        let len = StorageLengths::for_spheres(bodies.max(1), spheres.max(1));
-        Arena {
-            bodies: vec![Body::default(); len.bodies],
-            spheres: vec![Default::default(); len.spheres],
-            contacts: vec![ContactSlot::default(); len.contacts],
-            index: vec![0; len.sphere_index],
-            cells: vec![0; len.cells],
-        }
+        Arena(OwnedStorage::new(StorageLengths::for_spheres(
+            bodies.max(1),
+            spheres.max(1),
+        )))
     }
 
     /// A world over this storage.
     pub fn world(&mut self, experiment: Experiment) -> Result<World<'_, Fx>, ExperimentError> {
-        World::new(Storage {
-            bodies: &mut self.bodies,
-            spheres: &mut self.spheres,
-            contacts: &mut self.contacts,
-            sphere_index: &mut self.index,
-            cells: &mut self.cells,
-        })
-        .map_err(|reason| setup_error(experiment, reason))
+        World::new(self.0.storage()).map_err(|reason| setup_error(experiment, reason))
     }
 }
 

@@ -17,7 +17,6 @@
 //! When the plant has left the drum, free pods still in the air are classified by their
 //! ballistic landing point, pods still bonded to the clamp are unpicked.
 
-use arachis_core::bond::{Bond, BondBreak, BondStorage};
 use arachis_core::prelude::*;
 use arachis_core::scenario::materials::{GRAVITY_M_S2, STEEL};
 use arachis_core::scenario::pull_off::{POD_CONTACT, POD_MATERIAL, STALK_CONTACT, STALK_MATERIAL};
@@ -28,6 +27,7 @@ use rand_chacha::ChaCha8Rng;
 use super::accounting::{ballistic_landing_x, Fate};
 use super::machine::Machine;
 use super::HarvestError;
+use crate::arena::{OwnedBonds, OwnedStorage};
 use crate::plant::topology::Kind;
 use crate::plant::PlantModel;
 use crate::vtk::ParticleFrame;
@@ -109,17 +109,6 @@ pub struct PassResult {
     pub digest: u64,
     /// VTK frames (empty unless asked for).
     pub frames: Vec<ParticleFrame>,
-}
-
-/// Owned arenas (the core never allocates).
-struct Arenas<S: Scalar> {
-    bodies: Vec<Body<S>>,
-    spheres: Vec<Sphere<S>>,
-    contacts: Vec<ContactSlot<S>>,
-    index: Vec<u32>,
-    cells: Vec<u32>,
-    bonds: Vec<Bond<S>>,
-    log: Vec<BondBreak<S>>,
 }
 
 /// Plant placed for the pass: the model with moved spheres, the clamp body, the pod bodies.
@@ -240,28 +229,11 @@ pub fn run_pass<S: Scalar>(
     let n_bodies = n_plant_bodies + 1;
     let n_spheres = placed.model.spheres.len() + teeth_at.len();
     let len = StorageLengths::for_spheres(n_bodies, n_spheres);
-    let mut a = Arenas::<S> {
-        bodies: vec![Body::default(); len.bodies],
-        spheres: vec![Sphere::default(); len.spheres],
-        contacts: vec![ContactSlot::default(); len.contacts],
-        index: vec![0; len.sphere_index],
-        cells: vec![0; len.cells],
-        bonds: vec![Bond::default(); placed.model.bonds.len()],
-        log: vec![BondBreak::default(); placed.model.bonds.len()],
-    };
-    let mut w = World::new(Storage {
-        bodies: &mut a.bodies,
-        spheres: &mut a.spheres,
-        contacts: &mut a.contacts,
-        sphere_index: &mut a.index,
-        cells: &mut a.cells,
-    })
-    .map_err(|e| core(&e))?;
-    w.attach_bond_storage(BondStorage {
-        bonds: &mut a.bonds,
-        log: &mut a.log,
-    })
-    .map_err(|e| core(&e))?;
+    let mut arena = OwnedStorage::<S>::new(len);
+    let mut bond_arena = OwnedBonds::<S>::new(placed.model.bonds.len());
+    let mut w = World::new(arena.storage()).map_err(|e| core(&e))?;
+    w.attach_bond_storage(bond_arena.storage())
+        .map_err(|e| core(&e))?;
     let plant = w.add_material(STALK_MATERIAL).map_err(|e| core(&e))?;
     let pod = w.add_material(POD_MATERIAL).map_err(|e| core(&e))?;
     let steel = w.add_material(STEEL).map_err(|e| core(&e))?;

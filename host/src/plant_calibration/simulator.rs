@@ -6,7 +6,6 @@
 //! `arachis pulloff` command uses it too. [`PullOffSimulator::run_batch`] simulates a
 //! stage's runs on the rayon pool and returns them in run order, never completion order.
 
-use arachis_core::bond::{Bond, BondBreak, BondStorage};
 use arachis_core::prelude::*;
 use arachis_core::scenario::pull_off::{PullOff, PullOffResult};
 use arachis_core::scenario::ScenarioError;
@@ -15,6 +14,7 @@ use serde::Serialize;
 
 use super::error::PlantCalibrationError;
 use super::factors::TABLE5;
+use crate::arena::{OwnedBonds, OwnedStorage};
 use crate::calibrate::Progress;
 
 /// Step budget of one pull: 50 ms of pulling at dt 5e-7 s, 5 mm at 0.1 m/s, about 20 times
@@ -23,46 +23,22 @@ pub const MAX_STEPS: u64 = 100_000;
 
 /// Owned arenas of one pull-off world.
 pub struct PullOffArenas<S: Scalar> {
-    bodies: Vec<Body<S>>,
-    spheres: Vec<Sphere<S>>,
-    contacts: Vec<ContactSlot<S>>,
-    index: Vec<u32>,
-    cells: Vec<u32>,
-    bonds: Vec<Bond<S>>,
-    log: Vec<BondBreak<S>>,
+    storage: OwnedStorage<S>,
+    bonds: OwnedBonds<S>,
 }
 
 impl<S: Scalar> PullOffArenas<S> {
     /// Arenas sized for `rig`.
     pub fn new(rig: &PullOff) -> Self {
-        let l = rig.storage_lengths();
-        let bonds = rig.bond_capacity();
         Self {
-            bodies: vec![Body::default(); l.bodies],
-            spheres: vec![Sphere::default(); l.spheres],
-            contacts: vec![ContactSlot::default(); l.contacts],
-            index: vec![0; l.sphere_index],
-            cells: vec![0; l.cells],
-            bonds: vec![Bond::default(); bonds],
-            log: vec![BondBreak::default(); bonds],
+            storage: OwnedStorage::new(rig.storage_lengths()),
+            bonds: OwnedBonds::new(rig.bond_capacity()),
         }
     }
 
     /// The world of `rig` over these arenas.
     pub fn world(&mut self, rig: &PullOff) -> Result<World<'_, S>, ScenarioError> {
-        rig.build(
-            Storage {
-                bodies: &mut self.bodies,
-                spheres: &mut self.spheres,
-                contacts: &mut self.contacts,
-                sphere_index: &mut self.index,
-                cells: &mut self.cells,
-            },
-            BondStorage {
-                bonds: &mut self.bonds,
-                log: &mut self.log,
-            },
-        )
+        rig.build(self.storage.storage(), self.bonds.storage())
     }
 }
 
