@@ -48,7 +48,7 @@ impl<S: Scalar> ContactTerm<S> for CohesionSjkr<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::num::{Fx, Vec3};
+    use crate::num::Fx;
 
     #[test]
     fn force_is_energy_density_times_intersection_area() {
@@ -56,18 +56,8 @@ mod tests {
         // Fc = 1e4·1e-6·0.12566 = 1.2566e-3 N (attractive).
         let (r, alpha) = (4.0, 0.005);
         let k = ContactKinematics {
-            normal: Vec3::new(Fx::ZERO, Fx::ZERO, Fx::ONE),
-            overlap: Fx::from_f64(alpha),
             contact_radius: Fx::from_f64(r * alpha).sqrt(),
-            sqrt_a_mstar: Fx::ZERO,
-            vn: Fx::ZERO,
-            vt: Vec3::ZERO,
-            dt: Fx::from_f64(1e-3),
-            lever_i: Fx::ONE,
-            lever_j: Fx::ZERO,
-            r_star: Fx::ZERO,
-            w_rel: Vec3::ZERO,
-            rolling_inertia: Fx::ZERO,
+            ..crate::contact::test_kinematics(alpha, 0.0)
         };
         let mut out = ContactForce::default();
         CohesionSjkr::<Fx>::new(1e4).apply(&k, &mut ContactState::default(), &mut out);

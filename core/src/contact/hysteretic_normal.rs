@@ -75,22 +75,12 @@ impl<S: Scalar> ContactTerm<S> for HystereticNormal<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::num::{Fx, Vec3};
+    use crate::num::Fx;
 
     fn kin(r: f64, alpha: f64) -> ContactKinematics<Fx> {
         ContactKinematics {
-            normal: Vec3::new(Fx::ZERO, Fx::ZERO, Fx::ONE),
-            overlap: Fx::from_f64(alpha),
             contact_radius: Fx::from_f64(r * alpha).sqrt(),
-            sqrt_a_mstar: Fx::ZERO,
-            vn: Fx::ZERO,
-            vt: Vec3::ZERO,
-            dt: Fx::from_f64(1e-3),
-            lever_i: Fx::ONE,
-            lever_j: Fx::ZERO,
-            r_star: Fx::ZERO,
-            w_rel: Vec3::ZERO,
-            rolling_inertia: Fx::ZERO,
+            ..crate::contact::test_kinematics(alpha, 0.0)
         }
     }
 

@@ -146,3 +146,28 @@ pub fn clip_normal<S: Scalar>(out: &mut ContactForce<S>) {
         out.normal = S::ZERO;
     }
 }
+
+/// Kinematics for the terms' unit tests: normal +z, overlap `overlap_mm`, contact radius
+/// `contact_radius_mm`, dt 1e-3 ms, lever 1 mm on side i; every velocity and the R*, spin
+/// and inertia fields zero. Tests set what their term needs with struct-update syntax.
+#[cfg(test)]
+pub(crate) fn test_kinematics(
+    overlap_mm: f64,
+    contact_radius_mm: f64,
+) -> ContactKinematics<crate::num::Fx> {
+    use crate::num::Fx;
+    ContactKinematics {
+        normal: Vec3::new(Fx::ZERO, Fx::ZERO, Fx::ONE),
+        overlap: Fx::from_f64(overlap_mm),
+        contact_radius: Fx::from_f64(contact_radius_mm),
+        sqrt_a_mstar: Fx::ZERO,
+        vn: Fx::ZERO,
+        vt: Vec3::ZERO,
+        dt: Fx::from_f64(1e-3),
+        lever_i: Fx::ONE,
+        lever_j: Fx::ZERO,
+        r_star: Fx::ZERO,
+        w_rel: Vec3::ZERO,
+        rolling_inertia: Fx::ZERO,
+    }
+}

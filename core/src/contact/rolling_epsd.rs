@@ -104,19 +104,13 @@ mod tests {
 
     fn kin(w_rel_y: f64) -> ContactKinematics<Fx> {
         ContactKinematics {
-            normal: Vec3::new(Fx::ZERO, Fx::ZERO, Fx::ONE),
-            overlap: Fx::from_f64(0.005),
-            contact_radius: Fx::from_f64(0.02f64.sqrt()),
-            sqrt_a_mstar: Fx::ZERO,
-            vn: Fx::ZERO,
-            vt: Vec3::ZERO,
             dt: Fx::from_f64(1e-2),
             lever_i: Fx::from_f64(4.0),
-            lever_j: Fx::ZERO,
             r_star: Fx::from_f64(4.0),
             // A twisting part along n, which the rolling term must ignore.
             w_rel: Vec3::new(Fx::ZERO, Fx::from_f64(w_rel_y), Fx::from_f64(0.3)),
             rolling_inertia: Fx::from_f64(6.0),
+            ..crate::contact::test_kinematics(0.005, 0.02f64.sqrt())
         }
     }
 

@@ -46,22 +46,12 @@ impl<S: Scalar> ContactTerm<S> for ViscoelasticNormal<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::num::{Fx, Vec3};
+    use crate::num::Fx;
 
     fn kin(a: f64, vn: f64) -> ContactKinematics<Fx> {
         ContactKinematics {
-            normal: Vec3::new(Fx::ZERO, Fx::ZERO, Fx::ONE),
-            overlap: Fx::from_f64(0.01),
-            contact_radius: Fx::from_f64(a),
-            sqrt_a_mstar: Fx::ZERO,
             vn: Fx::from_f64(vn),
-            vt: Vec3::ZERO,
-            dt: Fx::from_f64(1e-3),
-            lever_i: Fx::ONE,
-            lever_j: Fx::ZERO,
-            r_star: Fx::ZERO,
-            w_rel: Vec3::ZERO,
-            rolling_inertia: Fx::ZERO,
+            ..crate::contact::test_kinematics(0.01, a)
         }
     }
 
