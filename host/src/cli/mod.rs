@@ -4,6 +4,7 @@
 //! status 2, so bad input is always a clear message and never a panic.
 
 pub mod calibrate;
+pub mod calibrate_plant;
 pub mod compare;
 pub mod diagnose;
 pub mod doe;

@@ -90,6 +90,9 @@ pub struct RigInfo {
 pub struct PlantCalibration {
     /// [`FORMAT`].
     pub format: &'static str,
+    /// The study file's name, when a study ran (`arachis calibrate STUDY`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub study: Option<String>,
     /// Target detachment force, N.
     pub target_n: f64,
     /// The plan that ran (factor levels, design settings, the named carry and why).
@@ -169,6 +172,7 @@ pub fn calibrate_plan(
         .fold(0.0_f64, f64::max);
     Ok(PlantCalibration {
         format: FORMAT,
+        study: None,
         target_n,
         plan: plan.clone(),
         rig: RigInfo {
