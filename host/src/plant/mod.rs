@@ -17,8 +17,10 @@
 
 pub mod error;
 pub mod generate;
+pub mod summary;
 pub mod topology;
 
 pub use error::PlantError;
 pub use generate::{generate, PlantModel};
+pub use summary::PlantSummary;
 pub use topology::Topology;
