@@ -284,3 +284,18 @@ fn seed000_options_are_refused_for_a_plant_study() {
         assert!(err.contains(says), "{flag}: {err}");
     }
 }
+
+#[test]
+fn study_check_validates_a_plant_study() {
+    let o = arachis(&["study", "check", shipped().to_str().unwrap()]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        out.contains("central composite on x7, x8 (α = 1.414, 5 centre points)"),
+        "{out}"
+    );
+    let o = arachis(&["study", "check", shipped().to_str().unwrap(), "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["measurement"]["value_n"], 7.18);
+    assert_eq!(v["factors"]["x8"]["high"], 1.4e6);
+}

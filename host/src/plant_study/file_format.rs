@@ -15,7 +15,7 @@
 
 use std::collections::BTreeMap;
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// The `kind` that marks a plant pull-off study.
 pub const KIND_PULL_OFF: &str = "pull_off";
@@ -24,7 +24,7 @@ pub const KIND_PULL_OFF: &str = "pull_off";
 pub const SECTIONS: [&str; 5] = ["study", "rig", "measurement", "factors", "plan"];
 
 /// `[study]`.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Header {
     /// Short name.
@@ -38,7 +38,7 @@ pub struct Header {
 }
 
 /// `[rig]`: the virtual tensile test (`arachis_core::scenario::PullOff`).
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Rig {
     /// Plant topology file, relative to the study file; its `[bonds]` give the rig's sets.
@@ -56,7 +56,7 @@ pub struct Rig {
 }
 
 /// `[measurement]`: the measured detachment force.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeasuredForce {
     /// What was measured (`"detachment_force"`).
@@ -68,7 +68,7 @@ pub struct MeasuredForce {
 }
 
 /// `[factors.<label>]`: a Table 5 factor's levels, in SI units.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FactorLevels {
     /// Level at coded −1.
@@ -81,7 +81,7 @@ pub struct FactorLevels {
 }
 
 /// `[plan]`.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlanSection {
     /// `[plan.screening]`.
@@ -97,7 +97,7 @@ pub struct PlanSection {
 }
 
 /// `[plan.screening]`.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Screening {
     /// `"plackett_burman"`.
@@ -113,7 +113,7 @@ pub struct Screening {
 }
 
 /// `[plan.steepest_ascent]`.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SteepestAscent {
     /// Coded step of the largest-|b| factor per point.
@@ -125,7 +125,7 @@ pub struct SteepestAscent {
 }
 
 /// `[plan.central_composite]`.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CentralComposite {
     /// The factors of the design (and of the path); absent: the screening's choice.
@@ -141,7 +141,7 @@ pub struct CentralComposite {
 }
 
 /// `[plan.optimisation]`.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Optimisation {
     /// `"target"`: desirability toward the measured force.
@@ -149,7 +149,7 @@ pub struct Optimisation {
 }
 
 /// `[plan.validation]`.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Validation {
     /// Pass mark, % relative error.
@@ -157,7 +157,7 @@ pub struct Validation {
 }
 
 /// The whole file, once every section has decoded.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PlantStudyFile {
     /// `[study]`.
     pub study: Header,

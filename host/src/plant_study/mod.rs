@@ -96,6 +96,57 @@ impl PlantStudy {
         &self.file
     }
 
+    /// A few lines for `arachis study check`: the measurement, the factors and the plan.
+    pub fn summary(&self) -> String {
+        let f = &self.file;
+        let p = &f.plan;
+        let mut lines = vec![
+            format!(
+                "plant pull-off study {} ({})",
+                f.study.name,
+                self.path.display()
+            ),
+            format!(
+                "measured {} = {} N ({})",
+                f.measurement.quantity, f.measurement.value_n, f.measurement.source
+            ),
+            format!(
+                "rig: {} m/s at {}°, {} stalk spheres, bond sets {} / {} of {}",
+                f.rig.pull_speed_m_s,
+                f.rig.pull_angle_deg,
+                f.rig.stalk_spheres,
+                f.rig.junction_bond_set,
+                f.rig.stalk_bond_set,
+                f.rig.topology
+            ),
+        ];
+        for factor in self.plan().factors {
+            lines.push(format!(
+                "  {} {} ({}): {} … {}",
+                factor.label, factor.description, factor.unit, factor.low, factor.high
+            ));
+        }
+        lines.push(format!(
+            "plan: Plackett–Burman {} runs + {} centre points; steepest ascent step {} coded, \
+             {}–{} points; central composite on {} (α = {}, {} centre points); goal {}; \
+             validation within {} %",
+            p.screening.runs,
+            p.screening.centre_points,
+            p.steepest_ascent.step_coded,
+            p.steepest_ascent.points,
+            p.steepest_ascent.max_points,
+            p.central_composite
+                .factors
+                .as_ref()
+                .map_or("the screening's choice".to_owned(), |f| f.join(", ")),
+            p.central_composite.alpha,
+            p.central_composite.centre_points,
+            p.optimisation.goal,
+            p.validation.max_relative_error_pct
+        ));
+        lines.join("\n")
+    }
+
     /// The measured detachment force, N.
     pub fn target_n(&self) -> f64 {
         self.file.measurement.value_n
