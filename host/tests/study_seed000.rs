@@ -260,7 +260,7 @@ fn summary_names_what_a_user_checks() {
         "repose repose_angle: 31.06 deg (n = 10, printed mean)",
         "x4   pod-pod.static_friction      0.837 … 0.878",
         "8 factors + 3 dummies",
-        "mode quick (default): 300 pods",
+        "mode quick (default): 150 pods",
     ] {
         assert!(text.contains(needle), "summary lacks '{needle}':\n{text}");
     }
