@@ -12,12 +12,11 @@
 //!   once panicked there for want of a font).
 
 use std::collections::BTreeMap;
-use std::path::Path;
 
 use arachis::calibrate::dem::PILE_PICTURE;
 use arachis::calibrate::{DemExperiment, Simulator};
 use arachis::experiments::{run_experiment, ExperimentKind, ModeName, RunOptions};
-use arachis::study::{Experiment, Study};
+use arachis::study::Experiment;
 
 mod quick_pile_support;
 use quick_pile_support::test_pile_study;

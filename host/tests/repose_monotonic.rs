@@ -17,11 +17,9 @@
 //! The threshold is a rise of more than [`MIN_RISE_DEG`] at every seed: the rig reports the
 //! mean over 12 views × 2 flanks, so a tie or a sub-degree wobble does not count as a rise.
 
-use std::path::Path;
 use std::sync::Arc;
 
 use arachis::experiments::*;
-use arachis::study::Study;
 use rayon::prelude::*;
 
 mod quick_pile_support;
