@@ -187,15 +187,24 @@ fn jobs_zero_is_refused() {
     assert_eq!(o.status.code(), Some(2));
 }
 
-/// A target far outside what the model gives in the seed's ranges (60° instead of 31.06°)
-/// completes the calibration and reports the missed validation: exit status 0 by
-/// default, 2 with `--strict`.
+/// A target far outside what the model gives in the seed's ranges (60° instead of 31.06°),
+/// with the path held to seed 000's five points (no `max_points`), completes the
+/// calibration and reports the missed validation: exit status 0 by default, 2 with
+/// `--strict`.
 #[test]
 fn a_missed_validation_is_reported_and_fails_only_with_strict() {
     let dir = tempfile::tempdir().unwrap();
     let text = std::fs::read_to_string(Path::new(ROOT).join(STUDY)).unwrap();
-    let unreachable = text.replacen("mean = 31.06 ", "mean = 60.0 ", 1);
-    assert_ne!(text, unreachable, "the study's target line moved");
+    let unreachable = text.replacen("mean = 31.06 ", "mean = 60.0 ", 1).replacen(
+        "max_points = ",
+        "# max_points = ",
+        1,
+    );
+    assert_eq!(
+        unreachable.len(),
+        text.len() - 1 + 2,
+        "the study's target or max_points line moved"
+    );
     let study = dir.path().join("study.toml");
     std::fs::write(&study, unreachable).unwrap();
     let study = study.to_str().unwrap();

@@ -2,8 +2,8 @@
 //! cheap piece of the end-to-end DEM calibration (the whole quick calibration is 35 piles,
 //! several CPU-minutes, too slow for CI; its committed output is docs/calibration-quick-dem/).
 //!
-//! One quick-mode repose spec at the seed's optimum (seed 000 §3.6.2), with the quick
-//! filling coarsened to 3 spheres per pod to keep it to one pile of about 13 CPU-s:
+//! One quick-mode repose spec at the seed's optimum (seed 000 §3.6.2), on the test pile of
+//! `quick_pile_support` (150 pods × 3 spheres), one pile of about 13 CPU-s:
 //! - the adapter answers what `run_experiment` answers for the spec's values, mode and seed
 //!   (bit for bit);
 //! - a second adapter, with nothing in memory (as after a resumed run), draws the pile
@@ -12,43 +12,18 @@
 //!   once panicked there for want of a font).
 
 use std::collections::BTreeMap;
-use std::path::Path;
 
 use arachis::calibrate::dem::PILE_PICTURE;
 use arachis::calibrate::{DemExperiment, Simulator};
 use arachis::experiments::{run_experiment, ExperimentKind, ModeName, RunOptions};
-use arachis::study::{Experiment, Study};
+use arachis::study::Experiment;
 
-const STUDY: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../testdata/peanut-pods-saline/study.toml"
-);
-/// Spheres per pod of the test's pile (the shipped quick mode has 6).
-const SPHERES_PER_POD: u32 = 3;
-
-/// The shipped study with the quick mode's filling coarsened to [`SPHERES_PER_POD`].
-fn coarse_study() -> Study {
-    let text = std::fs::read_to_string(STUDY).unwrap();
-    let mut in_quick = false;
-    let lines: Vec<String> = text
-        .lines()
-        .map(|line| {
-            if line.starts_with('[') {
-                in_quick = line.trim() == "[plan.modes.quick]";
-            }
-            if in_quick && line.starts_with("spheres_per_pod") {
-                format!("spheres_per_pod = {SPHERES_PER_POD}")
-            } else {
-                line.to_owned()
-            }
-        })
-        .collect();
-    Study::from_toml(&lines.join("\n"), Path::new(STUDY)).unwrap()
-}
+mod quick_pile_support;
+use quick_pile_support::test_pile_study;
 
 #[test]
 fn dem_adapter_answers_like_the_rig_and_redraws_the_same_pile() {
-    let study = coarse_study();
+    let study = test_pile_study();
     let values: BTreeMap<String, f64> = [
         ("pod-pod.restitution".to_string(), 0.335),
         ("pod-pod.static_friction".to_string(), 0.854),

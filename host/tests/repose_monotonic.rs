@@ -1,8 +1,8 @@
 //! Issue 4 must-show: the repose angle rises with pod–pod static friction and with pod–pod
 //! rolling friction, on the real DEM rig (cylinder lifting, `experiments::repose`).
 //!
-//! Cost: the shipped study's quick pile (150 pods, the same scaled 110 mm cylinder) with a
-//! coarser filling of 3 spheres per pod (the quick mode has 6), about 11–15 CPU-s a pile
+//! Cost: the test pile of `quick_pile_support` (150 pods in the quick mode's cylinder scaling,
+//! 3 spheres per pod), about 11–15 CPU-s a pile
 //! in release; 3 levels × 2 placement seeds = 6 piles, run 2 at a time.
 //!
 //! Design: a shared base at the seed's calibrated pair (μs = 0.854, μr = 0.346; e = 0.335,
@@ -17,18 +17,16 @@
 //! The threshold is a rise of more than [`MIN_RISE_DEG`] at every seed: the rig reports the
 //! mean over 12 views × 2 flanks, so a tie or a sub-degree wobble does not count as a rise.
 
-use std::path::Path;
 use std::sync::Arc;
 
 use arachis::experiments::*;
-use arachis::study::Study;
 use rayon::prelude::*;
 
-const STUDY: &str = "../testdata/peanut-pods-saline/study.toml";
+mod quick_pile_support;
+use quick_pile_support::test_pile_study;
+
 /// Placement seeds (paired across levels).
 const SEEDS: [u64; 2] = [1, 2];
-/// Spheres per pod of the test's pile (the shipped quick mode has 6).
-const SPHERES_PER_POD: u32 = 3;
 /// Seed 000 §3.6.2: calibrated pod–pod restitution, static and rolling friction.
 const E_POD_POD: f64 = 0.335;
 const MU_S_HIGH: f64 = 0.854;
@@ -39,31 +37,9 @@ const MU_R_LOW: f64 = 0.01;
 /// A rise must exceed this at every seed, degrees.
 const MIN_RISE_DEG: f64 = 1.0;
 
-/// The shipped study with the quick mode's filling coarsened to [`SPHERES_PER_POD`].
-fn coarse_study() -> Study {
-    let text = std::fs::read_to_string(STUDY).unwrap();
-    let mut out = String::new();
-    let mut in_quick = false;
-    let mut replaced = false;
-    for line in text.lines() {
-        if line.starts_with('[') {
-            in_quick = line.trim() == "[plan.modes.quick]";
-        }
-        if in_quick && line.starts_with("spheres_per_pod") {
-            out.push_str(&format!("spheres_per_pod = {SPHERES_PER_POD}\n"));
-            replaced = true;
-        } else {
-            out.push_str(line);
-            out.push('\n');
-        }
-    }
-    assert!(replaced, "the study has no quick-mode spheres_per_pod");
-    Study::from_toml(&out, Path::new(STUDY)).unwrap()
-}
-
 #[test]
 fn repose_angle_rises_with_pod_pod_static_and_rolling_friction() {
-    let study = coarse_study();
+    let study = test_pile_study();
     let options = RunOptions {
         vtk_dir: None,
         templates: Some(Arc::new(TemplateCache::new())),

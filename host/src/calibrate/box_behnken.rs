@@ -118,8 +118,8 @@ pub fn run(
     let responses: Vec<f64> = path.runs.iter().map(|r| r.response).collect();
     let (positions, rule) = box_positions(&responses, path.best - 1, target.value);
     let ends = [
-        path.actual_point(&path.coded_point(positions[0] as f64)),
-        path.actual_point(&path.coded_point(positions[1] as f64)),
+        path.actual_point(&path.coded_point(path.position(positions[0]))),
+        path.actual_point(&path.coded_point(path.position(positions[1]))),
     ];
     let step = plan.steepest_ascent.step_coded;
     let factors: Vec<FactorInfo> = path
@@ -131,6 +131,12 @@ pub fn run(
             if high - low <= SAME_LEVEL_FRACTION * (f.high - f.low) {
                 let half = 0.5 * step * 0.5 * (f.high - f.low);
                 (low, high) = (low - half, high + half);
+                // A factor the path holds at a limit keeps the box on the admissible side.
+                if f.admissible(low) != low {
+                    (low, high) = (f.admissible(low), f.admissible(low) + 2.0 * half);
+                } else if f.admissible(high) != high {
+                    (low, high) = (f.admissible(high) - 2.0 * half, f.admissible(high));
+                }
             }
             FactorInfo {
                 low,

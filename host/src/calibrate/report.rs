@@ -216,16 +216,16 @@ pub fn markdown(c: &Calibration, surfaces: &[String], picture: Option<&str>) -> 
         p.coefficients.iter().map(|b| format_number(*b)).collect::<Vec<_>>().join(", "),
         format_number(p.predicted_at_origin)
     );
-    let _ = write!(s, "| point |");
+    let _ = write!(s, "| point | position (steps) |");
     for f in &p.factors {
         let _ = write!(s, " {} |", f.label);
     }
     let _ = writeln!(s, " response ({unit}) | ψ (%) |");
-    let _ = writeln!(s, "|{}", "---|".repeat(p.factors.len() + 3));
-    for (r, e) in p.runs.iter().zip(&p.relative_error_pct) {
+    let _ = writeln!(s, "|{}", "---|".repeat(p.factors.len() + 4));
+    for ((r, e), m) in p.runs.iter().zip(&p.relative_error_pct).zip(&p.positions) {
         let _ = write!(
             s,
-            "| {}{} |",
+            "| {}{} | {m} |",
             r.run,
             if r.run == p.best { " (best)" } else { "" }
         );

@@ -13,14 +13,38 @@
 //! point is the one whose response is nearest the target (seed 000 Table 6: point 3,
 //! ψ = 1.35 %); the report says when that is the last point of the path, where the target
 //! may lie beyond it.
+//!
+//! Going on past the planned points (`[plan.steepest_ascent] max_points`): seed 000's five
+//! points suffice when its screening ranges bracket the target, but a model whose response
+//! over those ranges misses the target (ours: every quick pile of the seed's ranges stands
+//! at 35–54° against 31.06°) would end the path short of it. Then the path continues, the
+//! gap between points doubling (positions 6, 10, 18, … after the planned 0–4), so the
+//! target is reached in few runs even far outside the screened box, until a response
+//! crosses the target, `max_points` are run, or every factor is held by a limit. Points are
+//! run [`EXTENSION_BATCH`] at a time, a fixed number so the runs (and the JSON) do not
+//! depend on the machine's core count.
+//!
+//! Limits on the path: inside its screened range a factor takes any value the study admits;
+//! beyond it, only values inside the parameter's own physical limits
+//! ([`crate::study::limits::Limits`], e.g. μ ≥ 0, ν < 0.5). A factor that would leave them stops at
+//! the closed bound (μ at 0, e at 1) or, where the bound is open (ν < 0.5), at its screened
+//! level on that side, while the other factors go on.
 
 use serde::Serialize;
 
 use super::screening::{FactorInfo, Screening};
-use super::{planned_runs, CalibrateError, RunRecord, Runner, TargetInfo};
+use super::{planned_runs, CalibrateError, PlannedRun, RunRecord, Runner, TargetInfo};
 use crate::doe::{steepest_ascent, Factor};
 use crate::stats::relative_error_percent;
+use crate::study::limits::Limits;
 use crate::study::parameters::lookup;
+
+/// Path points run together when the path goes on past the planned points.
+pub const EXTENSION_BATCH: usize = 2;
+
+/// Gap, in path steps, between the last planned point and the first extension point; each
+/// later gap is twice the one before.
+const FIRST_EXTENSION_GAP: f64 = 2.0;
 
 /// Stage name in messages and the progress bar.
 pub const STAGE: &str = "steepest ascent";
@@ -40,6 +64,9 @@ pub struct SteepestAscent {
     pub origin_coded: Vec<f64>,
     /// Coded change of each factor per point.
     pub step_coded: Vec<f64>,
+    /// Path position of each run (0 = origin; 0, 1, … for the planned points, then the
+    /// doubling gaps of an extension).
+    pub positions: Vec<f64>,
     /// The path points in order (coded in the screening coding).
     pub runs: Vec<RunRecord>,
     /// ψ = |ζ′ − ζ|/ζ × 100 % of each point against the target (seed 000 eq. (21)).
@@ -53,13 +80,26 @@ pub struct SteepestAscent {
 }
 
 impl SteepestAscent {
-    /// Coded point `m` of the path (0 = origin; may lie before or past the run points).
+    /// Coded point `m` of the path (0 = origin; may lie before or past the run points),
+    /// each factor held at its limits as the module notes say.
     pub fn coded_point(&self, m: f64) -> Vec<f64> {
-        self.origin_coded
+        self.factors
             .iter()
-            .zip(&self.step_coded)
-            .map(|(o, d)| o + m * d)
+            .zip(self.origin_coded.iter().zip(&self.step_coded))
+            .map(|(f, (o, d))| f.coded(f.admissible(f.actual(o + m * d))))
             .collect()
+    }
+
+    /// Path position of run `index` (0-based), extrapolated by the neighbouring gap for
+    /// −1 and for one past the last run.
+    pub fn position(&self, index: i64) -> f64 {
+        let p = &self.positions;
+        let gap = |a: usize, b: usize| p.get(b).zip(p.get(a)).map_or(1.0, |(b, a)| b - a);
+        match usize::try_from(index) {
+            Ok(i) if i < p.len() => p[i],
+            Ok(_) => p.last().copied().unwrap_or(0.0) + gap(p.len().saturating_sub(2), p.len() - 1),
+            Err(_) => p.first().copied().unwrap_or(0.0) - gap(0, 1),
+        }
     }
 
     /// Actual values of coded path point `coded`, one per factor.
@@ -67,8 +107,36 @@ impl SteepestAscent {
         self.factors
             .iter()
             .zip(coded)
-            .map(|(f, &x)| 0.5 * (f.low + f.high) + x * 0.5 * (f.high - f.low))
+            .map(|(f, &x)| f.actual(x))
             .collect()
+    }
+}
+
+impl FactorInfo {
+    /// The value of coded level `x` in this factor's coding, in its unit.
+    pub fn actual(&self, x: f64) -> f64 {
+        0.5 * (self.low + self.high) + x * 0.5 * (self.high - self.low)
+    }
+
+    /// The coded level of `value` in this factor's coding.
+    pub fn coded(&self, value: f64) -> f64 {
+        (value - 0.5 * (self.low + self.high)) / (0.5 * (self.high - self.low))
+    }
+
+    /// `value` where the path may take it (module notes): unchanged inside the screened
+    /// range or the parameter's physical limits, else the nearest closed bound or the
+    /// screened level on that side.
+    pub fn admissible(&self, value: f64) -> f64 {
+        let limits = lookup(&self.name).map_or(Limits::NonNegative, |s| s.limits);
+        if (self.low..=self.high).contains(&value) || limits.check(value).is_ok() {
+            return value;
+        }
+        let edge = if value > self.high {
+            self.high
+        } else {
+            self.low
+        };
+        limits.nearest_admissible(value).unwrap_or(edge)
     }
 }
 
@@ -136,7 +204,82 @@ pub fn run(
         .map(|g| plan.step_coded * g / largest)
         .collect();
     let planned = planned_runs(&factors, &design);
-    let runs = runner.run_batch(STAGE, target.experiment, &target.condition, &planned)?;
+    let mut path = SteepestAscent {
+        factors,
+        coefficients: b.clone(),
+        direction: if ascend { "ascent" } else { "descent" }.to_owned(),
+        predicted_at_origin: predict(&origin),
+        origin_coded: origin,
+        step_coded: step,
+        positions: (0..planned.len()).map(|m| m as f64).collect(),
+        runs: runner.run_batch(STAGE, target.experiment, &target.condition, &planned)?,
+        relative_error_pct: Vec::new(),
+        best: 0,
+        best_at_path_end: false,
+        notes: Vec::new(),
+    };
+    let max_points = plan.max_points.map_or(0, |m| m as usize);
+    let first_side = path.runs.first().map(|r| r.response >= target.value);
+    let mut gap = FIRST_EXTENSION_GAP;
+    let mut held = false;
+    while path.runs.len() < max_points
+        && path
+            .runs
+            .iter()
+            .all(|r| Some(r.response >= target.value) == first_side)
+    {
+        let mut batch = Vec::new();
+        let mut last = path.coded_point(path.position(path.runs.len() as i64 - 1));
+        while batch.len() < EXTENSION_BATCH && path.runs.len() + batch.len() < max_points {
+            let m = path.positions.last().copied().unwrap_or(0.0) + gap;
+            let coded = path.coded_point(m);
+            if coded == last {
+                held = true;
+                break;
+            }
+            gap *= 2.0;
+            path.positions.push(m);
+            let values = path
+                .factors
+                .iter()
+                .zip(path.actual_point(&coded))
+                .map(|(f, v)| (f.name.clone(), v))
+                .collect();
+            last = coded.clone();
+            batch.push(PlannedRun {
+                coded,
+                values,
+                replicate: 0,
+            });
+        }
+        if batch.is_empty() {
+            break;
+        }
+        let first = path.runs.len();
+        let records = runner.run_batch(STAGE, target.experiment, &target.condition, &batch)?;
+        path.runs
+            .extend(records.into_iter().enumerate().map(|(i, mut r)| {
+                r.run = first + i + 1;
+                r
+            }));
+    }
+    if path.runs.len() > planned.len() {
+        path.notes.push(format!(
+            "the planned {} points did not reach the target, so the path went on with \
+             doubling gaps to {} points (positions {:?})",
+            planned.len(),
+            path.runs.len(),
+            &path.positions[planned.len()..]
+        ));
+    }
+    if held {
+        path.notes.push(
+            "the path stopped where every factor is held by a physical limit or its \
+             screened level"
+                .to_owned(),
+        );
+    }
+    let runs = &path.runs;
     let errors: Vec<f64> = runs
         .iter()
         .map(|r| relative_error_percent(r.response, target.value))
@@ -145,32 +288,22 @@ pub fn run(
         .min_by(|&a, &b| errors[a].total_cmp(&errors[b]))
         .unwrap_or(0);
     let at_end = best + 1 == runs.len();
-    let mut notes = Vec::new();
     if at_end {
-        notes.push(format!(
+        path.notes.push(format!(
             "the best point is the path's last (point {}): the target may lie beyond the path, \
              so the Box–Behnken box reaches one step past it",
             best + 1
         ));
     }
     if best == 0 {
-        notes.push(
+        path.notes.push(
             "the best point is the path's first: the response moved away from the target \
              along the whole path"
                 .to_owned(),
         );
     }
-    Ok(SteepestAscent {
-        factors,
-        coefficients: b.clone(),
-        direction: if ascend { "ascent" } else { "descent" }.to_owned(),
-        predicted_at_origin: predict(&origin),
-        origin_coded: origin,
-        step_coded: step,
-        runs,
-        relative_error_pct: errors,
-        best: best + 1,
-        best_at_path_end: at_end,
-        notes,
-    })
+    path.relative_error_pct = errors;
+    path.best = best + 1;
+    path.best_at_path_end = at_end;
+    Ok(path)
 }

@@ -2,7 +2,7 @@
 //! the relative error ψ = |ζ′ − ζ|/ζ × 100 % (seed 000 eq. (21); §3.6.2 reports 0.42 %)
 //! and the pass mark `[plan.validation] max_relative_error_pct`.
 //!
-//! The one chosen optimum is simulated [`VALIDATION_REPLICATES`] times with independent pod
+//! The one chosen optimum is simulated `[plan.validation] replicates` times with independent pod
 //! placements (the study's random seed advanced per replicate) and ψ is taken on their mean.
 //! Seed 000 §3.6.2 instead simulated several of its hundred solutions and kept the closest
 //! (30.93°, ψ = 0.42 %), which selects on run-to-run scatter; averaging replicates of one
@@ -19,9 +19,6 @@ use crate::study::Experiment;
 
 /// Stage name in messages and the progress bar.
 pub const STAGE: &str = "validation";
-
-/// Independent simulations of the optimum.
-pub const VALIDATION_REPLICATES: u32 = 3;
 
 /// The validation's numbers.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -59,7 +56,7 @@ pub fn run(runner: &Runner<'_>, optimum: &Optimum) -> Result<Validation, Calibra
     let measured = m
         .mean()
         .ok_or_else(|| CalibrateError::Plan("the validation measurement has no mean".into()))?;
-    let planned: Vec<PlannedRun> = (0..VALIDATION_REPLICATES)
+    let planned: Vec<PlannedRun> = (0..study.file().plan.validation.replicates())
         .map(|replicate| PlannedRun {
             coded: optimum.coded.clone(),
             values: optimum.actual.clone(),

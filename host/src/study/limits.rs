@@ -37,6 +37,21 @@ pub enum Limits {
 }
 
 impl Limits {
+    /// The admissible value nearest an inadmissible `value` when the limit is a closed bound
+    /// (μ ≥ 0 → 0, e ≤ 1 → 1, a fraction → 0 or 1); `None` when the admissible set is open
+    /// on that side (e > 0, ν < 0.5, a positive quantity), where no nearest value exists.
+    pub fn nearest_admissible(self, value: f64) -> Option<f64> {
+        if !value.is_finite() {
+            return None;
+        }
+        match self {
+            Self::Friction | Self::NonNegative => Some(value.max(0.0)),
+            Self::Restitution if value > 1.0 => Some(1.0),
+            Self::Fraction => Some(value.clamp(0.0, 1.0)),
+            _ => None,
+        }
+    }
+
     /// `Ok` when `value` is finite and admissible, else the reason in words.
     pub fn check(self, value: f64) -> Result<(), String> {
         if !value.is_finite() {
@@ -73,5 +88,20 @@ impl fmt::Display for Limits {
             Self::Fraction => "a fraction must lie in [0, 1]",
             Self::Probability => "a probability must lie in (0, 1)",
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nearest_admissible_stops_at_closed_bounds_only() {
+        assert_eq!(Limits::Friction.nearest_admissible(-0.2), Some(0.0));
+        assert_eq!(Limits::Restitution.nearest_admissible(1.3), Some(1.0));
+        assert_eq!(Limits::Restitution.nearest_admissible(-0.1), None);
+        assert_eq!(Limits::Poisson.nearest_admissible(0.7), None);
+        assert_eq!(Limits::Fraction.nearest_admissible(1.5), Some(1.0));
+        assert_eq!(Limits::Friction.nearest_admissible(f64::NAN), None);
     }
 }

@@ -100,6 +100,12 @@ pub struct SteepestAscent {
     pub step_coded: f64,
     /// Coded start of every significant factor (−1 = low level).
     pub origin_coded: f64,
+    /// When the response has not reached the target by the last of `points`, the path goes
+    /// on, the gap between points doubling each time, until the response crosses the target,
+    /// the factors reach their physical limits, or the path has this many points in all.
+    /// Absent: the path stops at `points` (seed 000 Table 6).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_points: Option<u32>,
 }
 
 /// `[plan.box_behnken]`.
@@ -157,6 +163,20 @@ pub struct Validation {
     pub condition: BTreeMap<String, f64>,
     /// Largest accepted relative error ψ, % (seed 000 eq. (21)).
     pub max_relative_error_pct: f64,
+    /// Independent simulations of the optimum, averaged (default
+    /// [`DEFAULT_VALIDATION_REPLICATES`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub replicates: Option<u32>,
+}
+
+/// Simulations of the optimum when `[plan.validation] replicates` is absent.
+pub const DEFAULT_VALIDATION_REPLICATES: u32 = 3;
+
+impl Validation {
+    /// Simulations of the optimum to average.
+    pub fn replicates(&self) -> u32 {
+        self.replicates.unwrap_or(DEFAULT_VALIDATION_REPLICATES)
+    }
 }
 
 /// `[plan.modes.<name>]`: problem size.

@@ -74,6 +74,17 @@ impl Validator<'_, '_> {
             plan.steepest_ascent.step_coded,
             Limits::Positive,
         );
+        if let Some(max) = plan.steepest_ascent.max_points {
+            if max < plan.steepest_ascent.points {
+                self.fail(
+                    &sa.key("max_points"),
+                    format!(
+                        "{max} is fewer than the path's {} planned points",
+                        plan.steepest_ascent.points
+                    ),
+                );
+            }
+        }
         let origin = plan.steepest_ascent.origin_coded;
         if !(-1.0..=1.0).contains(&origin) {
             self.fail(
@@ -111,6 +122,12 @@ impl Validator<'_, '_> {
             v.max_relative_error_pct,
             Limits::Positive,
         );
+        if v.replicates == Some(0) {
+            self.fail(
+                &at.key("validation").key("replicates"),
+                "the optimum needs at least one validation simulation",
+            );
+        }
 
         let sim = at.key("simulation");
         let p = &plan.simulation;
