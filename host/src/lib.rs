@@ -16,6 +16,7 @@ pub mod lab;
 pub mod optimize;
 pub mod plant;
 pub mod plant_calibration;
+pub mod plant_study;
 pub mod repose;
 pub mod shapes;
 pub mod stats;

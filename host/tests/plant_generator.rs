@@ -15,14 +15,15 @@ fn small_plant_has_the_expected_parts_and_bonds() {
     let t = Topology::from_toml(SMALL).unwrap();
     let m = generate(&t).unwrap();
     // Chains: n = round(L/D): stem 60/6.74 → 9, branch 30/6.74 → 4, stalks 12/1.93 → 6,
-    // leaf 12/4 → 3; pods: 2 clumps of 3 spheres.
+    // leaf 12/4 → 3; pods: 2 clumps of `pod_spheres` spheres each.
     let count = |k: Kind| m.bodies.iter().filter(|b| b.kind == k).count();
     assert_eq!(count(Kind::MainStem), 9);
     assert_eq!(count(Kind::LateralStem), 4);
     assert_eq!(count(Kind::PodStalk), 12);
     assert_eq!(count(Kind::Leaf), 3);
     assert_eq!(count(Kind::Pod), 2);
-    assert_eq!(m.spheres.len(), 9 + 4 + 12 + 3 + 6);
+    let per_pod = t.dimensions.pod_spheres;
+    assert_eq!(m.spheres.len(), 9 + 4 + 12 + 3 + 2 * per_pod);
     assert_eq!(m.bond_count("pod_stalk"), 2);
     assert_eq!(m.bond_count("stalk_stem"), 2);
     assert_eq!(m.bond_count("stem_leaf"), 1);
@@ -40,6 +41,61 @@ fn small_plant_has_the_expected_parts_and_bonds() {
         assert!(gap > 0.0 && gap < 2e-6, "{b:?} gap {gap}");
     }
     assert_eq!(m.set_name(m.sets["pod_stalk"].tag), Some("pod_stalk"));
+}
+
+/// Each pod is the normal pod of `arachis::shapes` (seed 001 Table 1's 34.27 × 18.29 ×
+/// 15.76 mm), filled with `pod_spheres` spheres: placed rigidly (every pairwise centre
+/// distance and radius as in the body-frame filling, 1e-9 mm), its tip sphere bonded to
+/// the stalk end and no pod sphere overlapping the stalk.
+#[test]
+fn pods_are_the_shape_modules_normal_pod_placed_rigidly() {
+    use arachis::plant::generate::pod_filling;
+    use arachis::shapes::{fill_with_spheres, FillOptions, FillTarget, PodKind, PodShape};
+
+    let t = Topology::from_toml(SMALL).unwrap();
+    let d = &t.dimensions;
+    assert_eq!(
+        (d.pod_length_mm, d.pod_width_mm, d.pod_thickness_mm),
+        (34.27, 18.29, 15.76)
+    );
+    let body = pod_filling(d).unwrap();
+    // The same filling straight from the shape module.
+    let direct = fill_with_spheres(
+        &PodShape::seed001_mean(PodKind::Normal),
+        &FillOptions {
+            resolution: d.pod_fill_resolution,
+            target: FillTarget::SphereCount(d.pod_spheres),
+        },
+    )
+    .unwrap();
+    assert_eq!(body, direct.spheres);
+    assert_eq!(body.len(), d.pod_spheres);
+
+    let m = generate(&t).unwrap();
+    let dist = |a: [f64; 3], b: [f64; 3]| -> f64 {
+        (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
+    };
+    for pod in m.bodies.iter().filter(|b| b.kind == Kind::Pod) {
+        let world: Vec<_> = pod.spheres.iter().map(|&i| &m.spheres[i]).collect();
+        for (i, (w, s)) in world.iter().zip(&body).enumerate() {
+            assert!((w.radius_m * 1e3 - s.radius_mm).abs() < 1e-9);
+            for (w2, s2) in world[i + 1..].iter().zip(&body[i + 1..]) {
+                let dw = dist(w.centre_m, w2.centre_m) * 1e3;
+                let db = dist(s.centre_mm, s2.centre_mm);
+                assert!((dw - db).abs() < 1e-9, "{dw} vs {db} mm");
+            }
+        }
+        let bond = m
+            .bonds
+            .iter()
+            .find(|b| b.set == "pod_stalk" && pod.spheres.contains(&b.b))
+            .unwrap();
+        let stalk_end = &m.spheres[bond.a];
+        for w in &world {
+            let gap = dist(w.centre_m, stalk_end.centre_m) - w.radius_m - stalk_end.radius_m;
+            assert!(gap > 0.0, "pod sphere overlaps the stalk end: gap {gap} m");
+        }
+    }
 }
 
 #[test]
@@ -116,6 +172,13 @@ fn bad_topologies_are_clear_errors() {
 
     let pod_on_stem = format!("{STEM}[[part]]\nname = \"p\"\nkind = \"pod\"\nparent = \"stem\"\n");
     assert!(matches!(err(&pod_on_stem), PlantError::BadParent { .. }));
+
+    // A pod with no sphere, or a fill grid too coarse to tell the waist from the lobes.
+    for (key, value) in [("pod_spheres", "0"), ("pod_fill_resolution", "4")] {
+        let e = err(&format!("[dimensions]\n{key} = {value}\n{STEM}"));
+        assert!(matches!(e, PlantError::BadValue { .. }), "{e}");
+        assert!(e.to_string().contains(key), "{e}");
+    }
 
     // A set the plant needs but the file lacks.
     let t = Topology::from_toml(&format!(

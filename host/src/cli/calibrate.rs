@@ -31,7 +31,9 @@ pub enum SimulatorChoice {
 /// Arguments of `arachis calibrate`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// The study file (TOML), e.g. testdata/peanut-pods-saline/study.toml.
+    /// The study file (TOML), e.g. testdata/peanut-pods-saline/study.toml; a plant pull-off
+    /// study (`[study] kind = "pull_off"`, e.g. testdata/peanut-plant/study.toml) runs seed
+    /// 001's junction calibration instead.
     pub study: PathBuf,
     /// Quick mode (`[plan.modes.quick]`: fewer pods, coarser filling).
     #[arg(long, conflicts_with_all = ["full", "mode"])]
@@ -99,8 +101,12 @@ fn simulator<'a>(
     }
 }
 
-/// Runs `arachis calibrate`.
+/// Runs `arachis calibrate`. A plant pull-off study (`[study] kind = "pull_off"`) goes to
+/// [`super::calibrate_plant`]; every other file is a seed 000 study.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    if crate::plant_study::is_plant_study(&args.study) {
+        return super::calibrate_plant::run(&args);
+    }
     let study = Study::load(&args.study)?;
     let mode = if args.quick {
         Some("quick".to_owned())

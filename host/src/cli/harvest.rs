@@ -30,7 +30,8 @@ use crate::stats::relative_error_percent;
 use crate::vtk::write_series;
 
 /// The shipped small plant (used when no `--topology` is given).
-const SHIPPED_TOPOLOGY: &str = include_str!("../../../testdata/peanut-plant/topology-small.toml");
+pub(crate) const SHIPPED_TOPOLOGY: &str =
+    include_str!("../../../testdata/peanut-plant/topology-small.toml");
 /// Steps between VTK frames by default with `--vtk`.
 const DEFAULT_FRAME_EVERY: u64 = 2000;
 /// Significance level of the t-test (seed 001 §3.3: t < t0.05).
@@ -110,6 +111,8 @@ struct Report<'a> {
     tip_speed_m_s: f64,
     plants_per_replicate: u32,
     pods_per_plant: usize,
+    /// Bonds of every named set in one plant (pod_stalk, stalk_stem, stem_leaf, …).
+    bond_sets_per_plant: std::collections::BTreeMap<&'static str, usize>,
     loss_percent: Vec<f64>,
     field_loss_percent: &'a [f64],
     relative_error_percent: Vec<Option<f64>>,
@@ -247,6 +250,7 @@ fn report<'a>(
             .iter()
             .filter(|b| b.kind == crate::plant::topology::Kind::Pod)
             .count(),
+        bond_sets_per_plant: model.bond_counts(),
         loss_percent: loss,
         field_loss_percent: &config.field_loss_percent,
         relative_error_percent: rel,

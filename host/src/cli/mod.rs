@@ -4,6 +4,7 @@
 //! status 2, so bad input is always a clear message and never a panic.
 
 pub mod calibrate;
+pub mod calibrate_plant;
 pub mod compare;
 pub mod diagnose;
 pub mod doe;
@@ -11,6 +12,7 @@ pub mod fit;
 pub mod harvest;
 pub mod lab;
 pub mod lab_repose;
+pub mod plant;
 pub mod plant_calibrate;
 pub mod pour;
 pub mod pulloff;
@@ -57,6 +59,8 @@ pub enum Command {
     Calibrate(calibrate::Args),
     /// Calibrate the pod–stalk junction bond on the tensile test (seed 001's plan).
     PlantCalibrate(plant_calibrate::Args),
+    /// Generate a plant from its topology and print its parts and bond-set counts.
+    Plant(plant::Args),
     /// Virtual harvest: plants through a toothed picking drum; loss rate and t-test against
     /// the field (seed 001 Table 12).
     Harvest(harvest::Args),
@@ -79,6 +83,7 @@ impl Cli {
             Command::Calibrate(args) => calibrate::run(args),
             Command::PlantCalibrate(args) => plant_calibrate::run(args),
             Command::Harvest(args) => harvest::run(args),
+            Command::Plant(args) => plant::run(args),
         }
     }
 }

@@ -1,5 +1,6 @@
 //! `arachis study check STUDY.toml [--json]`: parse and validate a study file before any
-//! simulation runs, reporting every problem with its file, key and line:column.
+//! simulation runs, reporting every problem with its file, key and line:column. A plant
+//! pull-off study (`[study] kind = "pull_off"`) is checked by `crate::plant_study`.
 
 use std::path::PathBuf;
 
@@ -20,7 +21,8 @@ pub struct Args {
 pub enum StudyCommand {
     /// Validate a study file and print its summary (or the validated study as JSON).
     Check {
-        /// The study file (TOML), e.g. testdata/peanut-pods-saline/study.toml.
+        /// The study file (TOML), e.g. testdata/peanut-pods-saline/study.toml or the plant
+        /// pull-off study testdata/peanut-plant/study.toml.
         study: PathBuf,
         /// Print the validated study as one JSON object instead of the summary.
         #[arg(long)]
@@ -31,6 +33,15 @@ pub enum StudyCommand {
 /// Runs `arachis study`.
 pub fn run(args: Args) -> anyhow::Result<()> {
     match args.command {
+        StudyCommand::Check { study, json } if crate::plant_study::is_plant_study(&study) => {
+            let study = crate::plant_study::PlantStudy::load(&study)?;
+            if json {
+                println!("{}", serde_json::to_string(study.file())?);
+            } else {
+                println!("{}", study.summary());
+            }
+            Ok(())
+        }
         StudyCommand::Check { study, json } => {
             let study = Study::load(&study)?;
             if json {

@@ -61,6 +61,9 @@ pub enum PlantError {
         /// The value.
         value: f64,
     },
+    /// The pod shape could not be built or filled with spheres (`crate::shapes`).
+    #[error("cannot build the pod from its shape: {0}")]
+    PodShape(String),
     /// The core refused the plant (capacity, ranges).
     #[error("the simulation core refused the plant: {0}")]
     Core(String),

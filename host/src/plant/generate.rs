@@ -5,9 +5,17 @@
 //! spheres of radius D/2 (one body each), grown from the attachment point: the child's first
 //! sphere touches the parent's sphere nearest to the point `at·L` along the parent and is
 //! bonded to it. Chain neighbours are bonded with the part's own set (`stem`, `stalk`,
-//! `leaf`), attachments with `stem` (lateral), `stalk_stem`, `stem_leaf` or `pod_stalk`. A pod
-//! is one clump of three spheres of radius H/2 spanning the pod length, continuing its
-//! stalk's direction. Neighbours are placed with a 1 µm gap so nothing overlaps at set-up.
+//! `leaf`), attachments with `stem` (lateral), `stalk_stem`, `stem_leaf` or `pod_stalk`.
+//!
+//! A pod is one clump: the normal pod of `crate::shapes` (two ellipsoidal kernels with a
+//! waist, seed 000 §2.2) of the topology's L × W × H (default seed 001 Table 1:
+//! 34.27 × 18.29 × 15.76 mm), filled with `dimensions.pod_spheres` spheres
+//! ([`fill_with_spheres`], deterministic). The filling is computed once per plant and placed
+//! at every stalk end with its length along the stalk's direction and its width
+//! perpendicular to it and to world z (world x when the stalk is vertical). The pod sphere
+//! reaching furthest toward the stalk — the tip sphere — sits on the stalk axis and carries
+//! the `pod_stalk` bond. Bonded neighbours are placed with a 1 µm gap so nothing overlaps at
+//! set-up.
 
 use std::collections::BTreeMap;
 
@@ -15,12 +23,11 @@ use arachis_core::bond::{BondSetId, BondSetSpec};
 use arachis_core::prelude::*;
 
 use super::error::PlantError;
-use super::topology::{Kind, Topology};
+use super::topology::{Dimensions, Kind, Topology};
+use crate::shapes::{fill_with_spheres, FillOptions, FillTarget, PodKind, PodShape, Sphere};
 
 /// Gap between neighbouring spheres at set-up, mm.
 const GAP_MM: f64 = 0.001;
-/// Spheres per pod clump.
-const POD_SPHERES: usize = 3;
 /// Millimetres per metre.
 const MM_PER_M: f64 = 1000.0;
 
@@ -95,6 +102,7 @@ pub fn generate(t: &Topology) -> Result<PlantModel, PlantError> {
         bonds: Vec::new(),
         sets: BTreeMap::new(),
     };
+    let pod = pod_filling(d)?;
     let mut placed: BTreeMap<&str, Placed> = BTreeMap::new();
     let mut remaining: Vec<&super::topology::Part> = t.parts.iter().collect();
     while !remaining.is_empty() {
@@ -113,39 +121,37 @@ pub fn generate(t: &Topology) -> Result<PlantModel, PlantError> {
                     let parent = parent.expect("checked above");
                     let end = *parent.spheres.last().expect("chains have ≥ 2 spheres");
                     let e = m.spheres[end].clone();
-                    let dir = parent.dir;
-                    let rp = d.pod_thickness_mm / 2.0;
-                    let spacing = (d.pod_length_mm - 2.0 * rp).max(0.0) / (POD_SPHERES - 1) as f64;
-                    let start = e.radius_m * MM_PER_M + GAP_MM + rp;
                     let body = m.bodies.len();
                     let first = m.spheres.len();
-                    for i in 0..POD_SPHERES {
-                        let c = along(
-                            e.centre_m.map(|x| x * MM_PER_M),
-                            dir,
-                            start + i as f64 * spacing,
-                        );
+                    let (centres, tip) = place_pod(
+                        &pod,
+                        e.centre_m.map(|x| x * MM_PER_M),
+                        e.radius_m * MM_PER_M,
+                        parent.dir,
+                    );
+                    for (c, s) in centres.iter().zip(&pod) {
                         m.spheres.push(PlantSphere {
                             centre_m: c.map(|x| x / MM_PER_M),
-                            radius_m: rp / MM_PER_M,
+                            radius_m: s.radius_mm / MM_PER_M,
                             body,
                         });
                     }
+                    let members: Vec<usize> = (first..first + pod.len()).collect();
                     m.bodies.push(PlantBody {
                         part: p.name.clone(),
                         kind: p.kind,
-                        spheres: (first..first + POD_SPHERES).collect(),
+                        spheres: members.clone(),
                     });
                     m.bonds.push(PlantBond {
                         a: end,
-                        b: first,
+                        b: first + tip,
                         set: "pod_stalk",
                     });
                     placed.insert(
                         &p.name,
                         Placed {
-                            spheres: (first..first + POD_SPHERES).collect(),
-                            dir,
+                            spheres: members,
+                            dir: parent.dir,
                         },
                     );
                     remaining.remove(k);
@@ -250,6 +256,86 @@ pub fn generate(t: &Topology) -> Result<PlantModel, PlantError> {
         spec.tag = tag as u16;
     }
     Ok(m)
+}
+
+/// The normal pod of `d`'s L × W × H filled with `d.pod_spheres` spheres, body frame, mm
+/// (origin at the pod's centre, z along the length, x along the width, y along the
+/// thickness: `crate::shapes`).
+pub fn pod_filling(d: &Dimensions) -> Result<Vec<Sphere>, PlantError> {
+    let shape_err = |e: crate::shapes::ShapeError| PlantError::PodShape(e.to_string());
+    let shape = PodShape::new(
+        PodKind::Normal,
+        d.pod_length_mm,
+        d.pod_width_mm,
+        d.pod_thickness_mm,
+    )
+    .map_err(shape_err)?;
+    let filling = fill_with_spheres(
+        &shape,
+        &FillOptions {
+            resolution: d.pod_fill_resolution,
+            target: FillTarget::SphereCount(d.pod_spheres),
+        },
+    )
+    .map_err(shape_err)?;
+    if filling.spheres.is_empty() {
+        return Err(PlantError::PodShape("the filling has no sphere".into()));
+    }
+    Ok(filling.spheres)
+}
+
+/// World centres (mm) of the pod spheres `pod` hung from a stalk end sphere at `end_mm`
+/// of radius `end_r_mm` along unit `dir`, and the index of the tip sphere (the one whose
+/// surface reaches lowest along body z, i.e. toward the stalk): the body frame is rotated
+/// so z → `dir`, x → a unit vector ⊥ `dir` and world z, y → `dir` × x, and shifted so the
+/// tip sphere's centre lies on the stalk axis with a [`GAP_MM`] gap to the end sphere. No
+/// other pod sphere reaches below the tip sphere's lowest point, so none overlaps the
+/// stalk's end sphere.
+fn place_pod(
+    pod: &[Sphere],
+    end_mm: [f64; 3],
+    end_r_mm: f64,
+    dir: [f64; 3],
+) -> (Vec<[f64; 3]>, usize) {
+    let tip = (0..pod.len())
+        .min_by(|&a, &b| {
+            let low = |s: &Sphere| s.centre_mm[2] - s.radius_mm;
+            low(&pod[a]).total_cmp(&low(&pod[b]))
+        })
+        .expect("pod_filling never returns an empty pod");
+    let reference = if dir[2].abs() > VERTICAL_COSINE {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 0.0, 1.0]
+    };
+    let ex = unit(cross(dir, reference));
+    let ey = cross(dir, ex);
+    let to_world = |p: [f64; 3]| -> [f64; 3] {
+        core::array::from_fn(|k| ex[k] * p[0] + ey[k] * p[1] + dir[k] * p[2])
+    };
+    let t = &pod[tip];
+    let anchor = along(end_mm, dir, end_r_mm + GAP_MM + t.radius_mm);
+    let tip_world = to_world(t.centre_mm);
+    let centres = pod
+        .iter()
+        .map(|s| {
+            let w = to_world(s.centre_mm);
+            core::array::from_fn(|k| anchor[k] + w[k] - tip_world[k])
+        })
+        .collect();
+    (centres, tip)
+}
+
+/// |cos| between a stalk direction and world z above which the stalk counts as vertical
+/// (the pod's width axis is then taken ⊥ world x instead of world z).
+const VERTICAL_COSINE: f64 = 0.99;
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 /// Sphere count and radius (mm) of a chain of length `l` and diameter `dia`.

@@ -11,13 +11,16 @@
 //! stalk with no pod (dangling), a bond radius ≤ 0, a missing bond set, a pod not on a stalk.
 //!
 //! Simplifications (stated, not hidden): stems, stalks and leaves are straight chains of
-//! touching spheres of the part's radius; a pod is a three-sphere clump of radius H/2 over the
-//! pod length (not yet the measured shapes of `crate::shapes`); a leaf is a short chain.
+//! touching spheres of the part's radius; a pod is one clump, the normal pod of
+//! `crate::shapes` (L × W × H, default seed 001 Table 1) filled with a few spheres
+//! (`dimensions.pod_spheres`, default 5, so plants stay cheap); a leaf is a short chain.
 
 pub mod error;
 pub mod generate;
+pub mod summary;
 pub mod topology;
 
 pub use error::PlantError;
 pub use generate::{generate, PlantModel};
+pub use summary::PlantSummary;
 pub use topology::Topology;

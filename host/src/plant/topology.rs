@@ -70,6 +70,18 @@ impl Kind {
     }
 }
 
+/// Default spheres per pod: enough for the normal pod's two lobes and waist, few enough
+/// that a plant of tens of pods steps cheaply (seed 001 prints no pod sphere count).
+pub const DEFAULT_POD_SPHERES: usize = 5;
+/// Most spheres per pod.
+pub const MAX_POD_SPHERES: usize = 64;
+/// Default fill resolution, voxels along the pod length (about 1.1 mm voxels).
+pub const DEFAULT_POD_FILL_RESOLUTION: usize = 32;
+/// Coarsest fill resolution (a coarser grid cannot tell the waist from the lobes).
+pub const MIN_POD_FILL_RESOLUTION: usize = 8;
+/// Finest fill resolution (the filling's cost grows with its cube).
+pub const MAX_POD_FILL_RESOLUTION: usize = 128;
+
 /// Dimensions, mm (defaults: seed 001 Table 1; leaf: assumed, the seed gives none).
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -86,8 +98,17 @@ pub struct Dimensions {
     pub stalk_diameter_mm: f64,
     /// Pod length L, mm (34.27).
     pub pod_length_mm: f64,
+    /// Pod width W, mm (18.29).
+    pub pod_width_mm: f64,
     /// Pod thickness H, mm (15.76).
     pub pod_thickness_mm: f64,
+    /// Spheres filling each pod (a normal pod of `crate::shapes`, L × W × H), 1 to
+    /// [`MAX_POD_SPHERES`]; default [`DEFAULT_POD_SPHERES`] (few, so plants stay cheap).
+    pub pod_spheres: usize,
+    /// Voxels along the pod's length for the filling (`crate::shapes::FillOptions`),
+    /// [`MIN_POD_FILL_RESOLUTION`] to [`MAX_POD_FILL_RESOLUTION`]; default
+    /// [`DEFAULT_POD_FILL_RESOLUTION`].
+    pub pod_fill_resolution: usize,
     /// Leaf length, mm (assumed 40).
     pub leaf_length_mm: f64,
     /// Leaf sphere diameter, mm (assumed 4).
@@ -103,7 +124,10 @@ impl Default for Dimensions {
             stalk_length_mm: 108.26,
             stalk_diameter_mm: 1.93,
             pod_length_mm: 34.27,
+            pod_width_mm: 18.29,
             pod_thickness_mm: 15.76,
+            pod_spheres: DEFAULT_POD_SPHERES,
+            pod_fill_resolution: DEFAULT_POD_FILL_RESOLUTION,
             leaf_length_mm: 40.0,
             leaf_diameter_mm: 4.0,
         }
@@ -189,11 +213,36 @@ impl Topology {
             ("stalk_length_mm", d.stalk_length_mm),
             ("stalk_diameter_mm", d.stalk_diameter_mm),
             ("pod_length_mm", d.pod_length_mm),
+            ("pod_width_mm", d.pod_width_mm),
             ("pod_thickness_mm", d.pod_thickness_mm),
             ("leaf_length_mm", d.leaf_length_mm),
             ("leaf_diameter_mm", d.leaf_diameter_mm),
         ] {
             positive(&format!("dimensions.{what}"), v)?;
+        }
+        for (what, v, lo, hi, rule) in [
+            (
+                "pod_spheres",
+                d.pod_spheres,
+                1,
+                MAX_POD_SPHERES,
+                "a whole number from 1 to 64",
+            ),
+            (
+                "pod_fill_resolution",
+                d.pod_fill_resolution,
+                MIN_POD_FILL_RESOLUTION,
+                MAX_POD_FILL_RESOLUTION,
+                "a whole number from 8 to 128",
+            ),
+        ] {
+            if !(lo..=hi).contains(&v) {
+                return Err(PlantError::BadValue {
+                    what: format!("dimensions.{what}"),
+                    rule,
+                    value: v as f64,
+                });
+            }
         }
         for (name, s) in &self.bonds {
             if !(s.radius_m.is_finite() && s.radius_m > 0.0) {

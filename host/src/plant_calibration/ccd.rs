@@ -8,8 +8,8 @@
 
 use serde::Serialize;
 
-use super::factors::by_label;
-use super::path::{settings_with, SteepestPath};
+use super::path::SteepestPath;
+use super::plan::Plan;
 use super::simulator::PullOffSimulator;
 use super::{PlantCalibrationError, RunRecord};
 use crate::calibrate::Progress;
@@ -59,18 +59,19 @@ pub struct CentralComposite {
 /// Runs stage 3.
 pub fn run(
     sim: &PullOffSimulator,
+    plan: &Plan,
     path: &SteepestPath,
     progress: &Progress,
 ) -> Result<CentralComposite, PlantCalibrationError> {
     let m = (path.best - 1) as f64;
-    let (lo, hi) = (path.actual_at(m - 1.0), path.actual_at(m + 1.0));
+    let (lo, hi) = (path.actual_at(plan, m - 1.0), path.actual_at(plan, m + 1.0));
     let factors: Vec<CcdFactor> = path
         .factors
         .iter()
         .enumerate()
         .map(|(i, l)| CcdFactor {
             label: l.clone(),
-            unit: by_label(l).map_or("", |f| f.unit).to_owned(),
+            unit: plan.factor(l).map_or("", |f| f.unit).to_owned(),
             low: lo[i].min(hi[i]),
             high: lo[i].max(hi[i]),
         })
@@ -84,14 +85,18 @@ pub fn run(
         .map(|f| Factor::new(&f.label, &f.unit, f.low, f.high))
         .collect::<Result<Vec<_>, _>>()
         .map_err(design_err)?;
-    let design =
-        central_composite(&doe_factors, Alpha::Value(ALPHA), CENTRE_POINTS).map_err(design_err)?;
+    let design = central_composite(
+        &doe_factors,
+        Alpha::Value(plan.ccd_alpha),
+        plan.ccd_centre_points,
+    )
+    .map_err(design_err)?;
     let settings: Vec<[f64; 9]> = design
         .coded
         .iter()
         .map(|row| {
             let values: Vec<f64> = factors.iter().zip(row).map(|(f, &x)| f.actual(x)).collect();
-            settings_with(&path.factors, &values)
+            plan.settings_with(&path.factors, &values)
         })
         .collect();
     let outcomes = sim.run_batch(STAGE, &settings, progress)?;
@@ -108,7 +113,7 @@ pub fn run(
     Ok(CentralComposite {
         runs: RunRecord::list(&design.coded, &settings, &outcomes),
         factors,
-        alpha: ALPHA,
+        alpha: plan.ccd_alpha,
         anova,
     })
 }

@@ -22,6 +22,7 @@ pub mod error;
 pub mod factors;
 pub mod optimum;
 pub mod path;
+pub mod plan;
 pub mod report;
 pub mod screening;
 pub mod simulator;
@@ -29,6 +30,7 @@ pub mod simulator;
 use serde::Serialize;
 
 pub use error::PlantCalibrationError;
+pub use plan::Plan;
 pub use simulator::{PullOffArenas, PullOffSimulator, PullOutcome};
 
 use crate::calibrate::Progress;
@@ -88,8 +90,13 @@ pub struct RigInfo {
 pub struct PlantCalibration {
     /// [`FORMAT`].
     pub format: &'static str,
+    /// The study file's name, when a study ran (`arachis calibrate STUDY`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub study: Option<String>,
     /// Target detachment force, N.
     pub target_n: f64,
+    /// The plan that ran (factor levels, design settings, the named carry and why).
+    pub plan: Plan,
     /// The rig.
     pub rig: RigInfo,
     /// Stage 1.
@@ -107,13 +114,30 @@ pub struct PlantCalibration {
     pub axial_check_max_deviation_pct: f64,
 }
 
-/// Runs seed 001's plan on `sim` toward `target_n` (N). `carry` overrides the screening's
-/// choice of factors for the path and the response surface (e.g. seed 001's x7, x8; 2 or 3
-/// distinct Table 5 labels); the report says so.
+/// Runs seed 001's plan ([`Plan::seed001`]) on `sim` toward `target_n` (N). `carry`
+/// overrides the screening's choice of factors for the path and the response surface (e.g.
+/// seed 001's x7, x8; 2 or 3 distinct Table 5 labels); the report says so.
 pub fn calibrate(
     sim: &PullOffSimulator,
     target_n: f64,
     carry: Option<&[String]>,
+    progress: &Progress,
+) -> Result<PlantCalibration, PlantCalibrationError> {
+    let mut plan = Plan::seed001();
+    if let Some(c) = carry {
+        plan::check_carry(c).map_err(|e| PlantCalibrationError::Plan(format!("--carry: {e}")))?;
+        plan.carry = Some(c.to_vec());
+        plan.carry_reason = Some("asked for on the command line (--carry)".into());
+    }
+    calibrate_plan(sim, target_n, &plan, progress)
+}
+
+/// Runs `plan` on `sim` toward `target_n` (N): screening, path, central composite,
+/// optimum and validation. The plan is checked before any pull.
+pub fn calibrate_plan(
+    sim: &PullOffSimulator,
+    target_n: f64,
+    plan: &Plan,
     progress: &Progress,
 ) -> Result<PlantCalibration, PlantCalibrationError> {
     if !(target_n.is_finite() && target_n > 0.0) {
@@ -121,21 +145,21 @@ pub fn calibrate(
             "the target detachment force must be a positive number of N, got {target_n}"
         )));
     }
-    if let Some(c) = carry {
-        check_carry(c)?;
-    }
-    let mut screening = screening::run(sim, progress)?;
-    if let Some(c) = carry {
+    plan.check().map_err(PlantCalibrationError::Plan)?;
+    let mut screening = screening::run(sim, plan, progress)?;
+    if let Some(c) = &plan.carry {
         screening.notes.push(format!(
-            "carried as asked: {} (the screening chose {})",
+            "the path and the central composite design take {} ({}); the screening alone \
+             would have carried {}",
             c.join(", "),
-            screening.carried.join(", ")
+            plan.carry_reason.as_deref().unwrap_or("named by the plan"),
+            screening.screening_choice.join(", ")
         ));
-        screening.carried = c.to_vec();
+        screening.carried = c.clone();
     }
-    let path = path::run(sim, &screening, target_n, progress)?;
-    let central_composite = ccd::run(sim, &path, progress)?;
-    let optimum = optimum::run(sim, &central_composite, target_n)?;
+    let path = path::run(sim, plan, &screening, target_n, progress)?;
+    let central_composite = ccd::run(sim, plan, &path, progress)?;
+    let optimum = optimum::run(sim, plan, &central_composite, target_n)?;
     let all: Vec<&RunRecord> = screening
         .runs
         .iter()
@@ -148,7 +172,9 @@ pub fn calibrate(
         .fold(0.0_f64, f64::max);
     Ok(PlantCalibration {
         format: FORMAT,
+        study: None,
         target_n,
+        plan: plan.clone(),
         rig: RigInfo {
             pull_speed_m_s: sim.base.pull_speed_m_s,
             pull_angle_deg: sim.base.pull_angle_deg,
@@ -162,30 +188,4 @@ pub fn calibrate(
         central_composite,
         optimum,
     })
-}
-
-/// Refuses a `carry` list that is not 2 or 3 distinct Table 5 labels.
-fn check_carry(carry: &[String]) -> Result<(), PlantCalibrationError> {
-    let range = screening::MIN_CARRIED..=screening::MAX_CARRIED;
-    if !range.contains(&carry.len()) {
-        return Err(PlantCalibrationError::Plan(format!(
-            "--carry takes {} to {} factors (the central composite stage), got {}",
-            range.start(),
-            range.end(),
-            carry.len()
-        )));
-    }
-    for (i, l) in carry.iter().enumerate() {
-        if factors::by_label(l).is_none() {
-            return Err(PlantCalibrationError::Plan(format!(
-                "unknown factor '{l}' (seed 001 Table 5 has x1…x9)"
-            )));
-        }
-        if carry[..i].contains(l) {
-            return Err(PlantCalibrationError::Plan(format!(
-                "factor '{l}' given twice"
-            )));
-        }
-    }
-    Ok(())
 }

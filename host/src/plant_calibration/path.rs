@@ -12,7 +12,7 @@
 
 use serde::Serialize;
 
-use super::factors::{by_label, TABLE5};
+use super::plan::Plan;
 use super::screening::Screening;
 use super::simulator::PullOffSimulator;
 use super::{PlantCalibrationError, RunRecord};
@@ -53,32 +53,26 @@ pub struct SteepestPath {
 }
 
 impl SteepestPath {
-    /// Actual values of the carried factors at coded path position `m` (0 = origin).
-    pub fn actual_at(&self, m: f64) -> Vec<f64> {
+    /// Actual values of the carried factors at coded path position `m` (0 = origin), in
+    /// `plan`'s coding.
+    pub fn actual_at(&self, plan: &Plan, m: f64) -> Vec<f64> {
         self.factors
             .iter()
             .zip(self.origin_coded.iter().zip(&self.step_coded))
             .map(|(l, (o, d))| {
-                let f = by_label(l).expect("carried labels are Table 5's");
+                let f = plan
+                    .factor(l)
+                    .expect("carried labels are checked Table 5 labels");
                 f.centre() + (o + m * d) * 0.5 * (f.high - f.low)
             })
             .collect()
     }
 }
 
-/// The nine settings with the carried factors (`labels`) at `values`, others at centre.
-pub fn settings_with(labels: &[String], values: &[f64]) -> [f64; 9] {
-    core::array::from_fn(|j| {
-        labels
-            .iter()
-            .position(|l| l == TABLE5[j].label)
-            .map_or(TABLE5[j].centre(), |i| values[i])
-    })
-}
-
 /// Runs stage 2 toward `target_n` (N).
 pub fn run(
     sim: &PullOffSimulator,
+    plan: &Plan,
     screening: &Screening,
     target_n: f64,
     progress: &Progress,
@@ -94,23 +88,34 @@ pub fn run(
     let origin: Vec<f64> = g.iter().map(|v| -v.signum()).collect();
     let factors = labels
         .iter()
-        .map(|l| by_label(l).expect("carried labels are Table 5's").factor())
+        .map(|l| {
+            plan.factor(l)
+                .expect("carried labels are checked Table 5 labels")
+                .factor()
+        })
         .collect::<Result<Vec<Factor>, _>>()
         .map_err(|source| PlantCalibrationError::Design {
             stage: STAGE,
             source,
         })?;
-    let design =
-        steepest_ascent(&factors, &g, &origin, STEP_CODED, MAX_POINTS).map_err(|source| {
-            PlantCalibrationError::Design {
-                stage: STAGE,
-                source,
-            }
-        })?;
+    let design = steepest_ascent(
+        &factors,
+        &g,
+        &origin,
+        plan.path_step_coded,
+        plan.path_max_points,
+    )
+    .map_err(|source| PlantCalibrationError::Design {
+        stage: STAGE,
+        source,
+    })?;
     let largest = g.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    let step: Vec<f64> = g.iter().map(|v| STEP_CODED * v / largest).collect();
-    let setting = |i: usize| settings_with(&labels, &design.actual_row(i));
-    let first: Vec<[f64; 9]> = (0..FIRST_POINTS).map(setting).collect();
+    let step: Vec<f64> = g
+        .iter()
+        .map(|v| plan.path_step_coded * v / largest)
+        .collect();
+    let setting = |i: usize| plan.settings_with(&labels, &design.actual_row(i));
+    let first: Vec<[f64; 9]> = (0..plan.path_first_points).map(setting).collect();
     let mut outcomes = sim.run_batch(STAGE, &first, progress)?;
     let mut settings = first;
     let error = |f: f64| relative_error_percent(f, target_n);
@@ -122,9 +127,10 @@ pub fn run(
             })
             .unwrap_or(0)
     };
-    while best_of(&outcomes) + 1 == outcomes.len() && outcomes.len() < MAX_POINTS {
+    while best_of(&outcomes) + 1 == outcomes.len() && outcomes.len() < plan.path_max_points {
         let next = setting(outcomes.len());
-        if let Some(reason) = TABLE5
+        if let Some(reason) = plan
+            .factors
             .iter()
             .zip(&next)
             .find_map(|(f, v)| f.check(*v).err())
@@ -136,10 +142,11 @@ pub fn run(
         settings.push(next);
     }
     let best = best_of(&outcomes);
-    if outcomes.len() > FIRST_POINTS {
+    if outcomes.len() > plan.path_first_points {
         notes.push(format!(
-            "the force was still approaching the target after the seed's {FIRST_POINTS} \
-             points, so the path went on to {} points",
+            "the force was still approaching the target after the plan's {} points, so \
+             the path went on to {} points",
+            plan.path_first_points,
             outcomes.len()
         ));
     }

@@ -7,8 +7,7 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use super::factors::{SEED_CARRIED, SEED_SIGNIFICANT, TABLE5};
-use super::optimum::MAX_RELATIVE_ERROR_PCT;
+use super::factors::{SEED_CARRIED, SEED_SIGNIFICANT};
 use super::PlantCalibration;
 use crate::io::write_string_atomic;
 
@@ -17,23 +16,35 @@ pub const JSON_FILE: &str = "plant-calibration.json";
 /// Markdown file name.
 pub const MARKDOWN_FILE: &str = "report.md";
 
-/// What the JSON file holds: the calibration and its wall-clock time.
+/// What the JSON file holds: the calibration and, when asked, its wall-clock time.
 #[derive(Serialize)]
 struct Written<'a> {
     #[serde(flatten)]
     calibration: &'a PlantCalibration,
-    wall_seconds: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    wall_seconds: Option<f64>,
 }
 
-/// Writes both files into `dir` (created if missing).
+/// Writes both files into `dir` (created if missing), with the wall-clock time in each.
 pub fn write_all(cal: &PlantCalibration, wall_seconds: f64, dir: &Path) -> anyhow::Result<()> {
+    write_files(cal, Some(wall_seconds), dir)
+}
+
+/// Writes both files into `dir` (created if missing); `wall_seconds` `None` leaves the
+/// run time out, so the same calibration always writes the same bytes (the simulation is
+/// bit-reproducible; only the clock is not).
+pub fn write_files(
+    cal: &PlantCalibration,
+    wall_seconds: Option<f64>,
+    dir: &Path,
+) -> anyhow::Result<()> {
     std::fs::create_dir_all(dir)?;
     let json = serde_json::to_string_pretty(&Written {
         calibration: cal,
         wall_seconds,
     })?;
     write_string_atomic(&dir.join(JSON_FILE), &(json + "\n"))?;
-    write_string_atomic(&dir.join(MARKDOWN_FILE), &markdown(cal, wall_seconds))
+    write_string_atomic(&dir.join(MARKDOWN_FILE), &render(cal, wall_seconds))
 }
 
 /// `v` with 4 significant digits.
@@ -43,6 +54,11 @@ fn g(v: f64) -> String {
 
 /// The markdown report.
 pub fn markdown(cal: &PlantCalibration, wall_seconds: f64) -> String {
+    render(cal, Some(wall_seconds))
+}
+
+/// The markdown report; the wall-clock time only when given.
+fn render(cal: &PlantCalibration, wall_seconds: Option<f64>) -> String {
     let mut s = String::new();
     let s8 = &cal.screening;
     let _ = writeln!(s, "# Plant calibration: pod–stalk junction (seed 001 §3)\n");
@@ -50,14 +66,14 @@ pub fn markdown(cal: &PlantCalibration, wall_seconds: f64) -> String {
         s,
         "Target detachment force {} N (seed 001 Table 8). Rig: axial-pull tensile test at \
          {} m/s, pull angle {}°, {} stalk spheres, junction kn {} N/m³ (held). {} pull-off \
-         runs in {:.2} s wall-clock.\n",
+         runs{}.\n",
         cal.target_n,
         cal.rig.pull_speed_m_s,
         cal.rig.pull_angle_deg,
         cal.rig.stalk_spheres,
         g(cal.rig.junction_normal_stiffness_n_m3),
         cal.runs,
-        wall_seconds
+        wall_seconds.map_or(String::new(), |w| format!(" in {w:.2} s wall-clock"))
     );
     let _ = writeln!(s, "## 1. Plackett–Burman screening (Tables 5–7)\n");
     let _ = writeln!(
@@ -65,7 +81,7 @@ pub fn markdown(cal: &PlantCalibration, wall_seconds: f64) -> String {
         "| factor | what | low | high | effect / N | p | seed p < 0.05 |"
     );
     let _ = writeln!(s, "|---|---|---|---|---|---|---|");
-    for (f, e) in TABLE5.iter().zip(&s8.effects) {
+    for (f, e) in cal.plan.factors.iter().zip(&s8.effects) {
         let _ = writeln!(
             s,
             "| {} | {} ({}) | {} | {} | {:.4} | {:.3e} | {} |",
@@ -85,17 +101,25 @@ pub fn markdown(cal: &PlantCalibration, wall_seconds: f64) -> String {
     }
     let _ = writeln!(
         s,
-        "\nR² {:.4}; curvature p {}; significant here (p < 0.05): {:?}; seed: {:?}. Carried \
-         (p ≤ 0.01): {:?}; seed: {:?}.",
+        "\nR² {:.4}; curvature p {}; significant here (p < {}): {:?}; seed: {:?}. The \
+         screening's choice (p ≤ {}): {:?}; seed's: {:?}. Carried to the path and the central \
+         composite design: {:?} — {}.",
         s8.anova.fit.r2,
         s8.anova
             .curvature
             .as_ref()
             .map_or("-".into(), |c| format!("{:.3e}", c.p)),
+        cal.plan.significance,
         s8.significant,
         SEED_SIGNIFICANT,
+        cal.plan.carry_level,
+        s8.screening_choice,
+        SEED_CARRIED,
         s8.carried,
-        SEED_CARRIED
+        cal.plan
+            .carry_reason
+            .as_deref()
+            .unwrap_or("the screening's choice")
     );
     for n in &s8.notes {
         let _ = writeln!(s, "\nNote: {n}");
@@ -125,7 +149,7 @@ pub fn markdown(cal: &PlantCalibration, wall_seconds: f64) -> String {
         let vals: Vec<String> = p
             .factors
             .iter()
-            .map(|l| g(r.settings[label_index(l)]))
+            .map(|l| g(r.settings[label_index(cal, l)]))
             .collect();
         let _ = writeln!(
             s,
@@ -196,12 +220,16 @@ pub fn markdown(cal: &PlantCalibration, wall_seconds: f64) -> String {
         cal.target_n,
         o.relative_error_pct,
         if o.passed { "passed" } else { "FAILED" },
-        MAX_RELATIVE_ERROR_PCT
+        o.max_relative_error_pct
     );
     s
 }
 
 /// Column of `label` among x1…x9.
-fn label_index(label: &str) -> usize {
-    TABLE5.iter().position(|f| f.label == label).unwrap_or(0)
+fn label_index(cal: &PlantCalibration, label: &str) -> usize {
+    cal.plan
+        .factors
+        .iter()
+        .position(|f| f.label == label)
+        .unwrap_or(0)
 }

@@ -10,11 +10,11 @@
 
 use serde::Serialize;
 
-use super::factors::TABLE5;
+use super::plan::Plan;
 use super::simulator::PullOffSimulator;
 use super::{PlantCalibrationError, RunRecord};
 use crate::calibrate::Progress;
-use crate::doe::{plackett_burman, PlackettBurmanRuns};
+use crate::doe::plackett_burman;
 use crate::stats::{analyze, Anova, CodedDesign, ModelOrder};
 
 /// Stage name.
@@ -56,8 +56,12 @@ pub struct Screening {
     pub effects: Vec<Effect>,
     /// Labels with p < [`SIGNIFICANCE`], smallest p first.
     pub significant: Vec<String>,
-    /// Labels carried on, largest |effect| first.
+    /// Labels carried on to the path and the central composite design: the screening's
+    /// choice, or the plan's named factors when it names them.
     pub carried: Vec<String>,
+    /// What the screening alone chose (p ≤ the carry level, largest |effect| first, filled
+    /// up or cut to 2–3), whatever the plan then carried.
+    pub screening_choice: Vec<String>,
     /// Decisions the report must state.
     pub notes: Vec<String>,
     /// 2b₈₉/3, N: the main effect the x8·x9 interaction of F = σc·πRb² lends every other
@@ -66,10 +70,10 @@ pub struct Screening {
     pub x8_x9_alias_effect_n: f64,
 }
 
-/// 2b₈₉/3 of F = σc·πRb² over Table 5's x8 and x9 ranges, N (see
-/// [`Screening::x8_x9_alias_effect_n`]).
-pub fn x8_x9_alias_effect_n() -> f64 {
-    let (s, r) = (&TABLE5[7], &TABLE5[8]);
+/// 2b₈₉/3 of F = σc·πRb² over the plan's x8 and x9 ranges (seed 001 Table 5's for
+/// [`Plan::seed001`]), N (see [`Screening::x8_x9_alias_effect_n`]).
+pub fn x8_x9_alias_effect_n(plan: &Plan) -> f64 {
+    let (s, r) = (&plan.factors[7], &plan.factors[8]);
     let f = |sigma: f64, radius: f64| sigma * core::f64::consts::PI * radius * radius;
     let b89 = (f(s.high, r.high) - f(s.high, r.low) - f(s.low, r.high) + f(s.low, r.low)) / 4.0;
     2.0 * b89 / 3.0
@@ -85,19 +89,27 @@ impl Screening {
 /// Runs stage 1.
 pub fn run(
     sim: &PullOffSimulator,
+    plan: &Plan,
     progress: &Progress,
 ) -> Result<Screening, PlantCalibrationError> {
     let design_err = |source| PlantCalibrationError::Design {
         stage: STAGE,
         source,
     };
-    let factors = TABLE5
+    let factors = plan
+        .factors
         .iter()
         .map(|f| f.factor())
         .collect::<Result<Vec<_>, _>>()
         .map_err(design_err)?;
+    let size = plan.plackett_burman_runs().ok_or_else(|| {
+        PlantCalibrationError::Plan(format!(
+            "no {}-run Plackett–Burman design",
+            plan.screening_runs
+        ))
+    })?;
     let design =
-        plackett_burman(PlackettBurmanRuns::Twelve, &factors, CENTRE_POINTS).map_err(design_err)?;
+        plackett_burman(size, &factors, plan.screening_centre_points).map_err(design_err)?;
     let k = factors.len();
     let settings: Vec<[f64; 9]> = design
         .coded
@@ -106,7 +118,7 @@ pub fn run(
         .collect();
     let outcomes = sim.run_batch(STAGE, &settings, progress)?;
     let runs = RunRecord::list(&design.coded, &settings, &outcomes);
-    let labels: Vec<String> = TABLE5.iter().map(|f| f.label.to_owned()).collect();
+    let labels: Vec<String> = plan.factors.iter().map(|f| f.label.to_owned()).collect();
     let coded: Vec<Vec<f64>> = design.coded.iter().map(|r| r[..k].to_vec()).collect();
     let y: Vec<f64> = outcomes.iter().map(|o| o.detachment_force_n).collect();
     let stats_err = |source| PlantCalibrationError::Stats {
@@ -132,36 +144,38 @@ pub fn run(
     by_p.sort_by(|a, b| a.p.total_cmp(&b.p));
     let significant = by_p
         .iter()
-        .filter(|e| e.p < SIGNIFICANCE)
+        .filter(|e| e.p < plan.significance)
         .map(|e| e.label.clone())
         .collect();
-    let (carried, notes) = carry(&effects);
+    let (carried, notes) = carry(&effects, plan.carry_level);
     Ok(Screening {
         runs,
         intercept: anova.coefficients[0].estimate,
         anova,
         effects,
         significant,
+        screening_choice: carried.clone(),
         carried,
         notes,
-        x8_x9_alias_effect_n: x8_x9_alias_effect_n(),
+        x8_x9_alias_effect_n: x8_x9_alias_effect_n(plan),
     })
 }
 
-/// The carried labels (largest |effect| first) and notes on any fill-up or cut.
-fn carry(effects: &[Effect]) -> (Vec<String>, Vec<String>) {
+/// The carried labels (largest |effect| first, p ≤ `carry_level`) and notes on any
+/// fill-up or cut.
+fn carry(effects: &[Effect], carry_level: f64) -> (Vec<String>, Vec<String>) {
     let mut by_size: Vec<&Effect> = effects.iter().collect();
     by_size.sort_by(|a, b| b.effect.abs().total_cmp(&a.effect.abs()));
     let passed: Vec<&Effect> = by_size
         .iter()
         .copied()
-        .filter(|e| e.p <= CARRY_LEVEL)
+        .filter(|e| e.p <= carry_level)
         .collect();
     let mut notes = Vec::new();
     let n = passed.len().clamp(MIN_CARRIED, MAX_CARRIED);
     if passed.len() > MAX_CARRIED {
         notes.push(format!(
-            "{} factors reached p ≤ {CARRY_LEVEL}; the {MAX_CARRIED} of largest |effect| go on",
+            "{} factors reached p ≤ {carry_level}; the {MAX_CARRIED} of largest |effect| go on",
             passed.len()
         ));
     }
@@ -170,11 +184,11 @@ fn carry(effects: &[Effect]) -> (Vec<String>, Vec<String>) {
         let fill: Vec<&Effect> = by_size
             .iter()
             .copied()
-            .filter(|e| e.p > CARRY_LEVEL)
+            .filter(|e| e.p > carry_level)
             .take(MIN_CARRIED - carried.len())
             .collect();
         notes.push(format!(
-            "only {} factor(s) reached p ≤ {CARRY_LEVEL}; the central composite design needs \
+            "only {} factor(s) reached p ≤ {carry_level}; the central composite design needs \
              {MIN_CARRIED}, so the largest |effect| among the rest fill up: {}",
             carried.len(),
             fill.iter()
@@ -202,13 +216,16 @@ mod tests {
 
     #[test]
     fn carry_fills_up_and_cuts_by_effect() {
-        let (c, notes) = carry(&[e("a", 1.0, 0.001), e("b", 3.0, 0.2), e("c", 2.0, 0.3)]);
+        let (c, notes) = carry(
+            &[e("a", 1.0, 0.001), e("b", 3.0, 0.2), e("c", 2.0, 0.3)],
+            CARRY_LEVEL,
+        );
         assert_eq!(c, ["a", "b"]);
         assert!(notes[0].contains("fill up: b"), "{notes:?}");
         let all: Vec<Effect> = (0..5)
             .map(|i| e(&format!("f{i}"), f64::from(i), 0.001))
             .collect();
-        let (c, notes) = carry(&all);
+        let (c, notes) = carry(&all, CARRY_LEVEL);
         assert_eq!(c, ["f4", "f3", "f2"]);
         assert_eq!(notes.len(), 1);
     }

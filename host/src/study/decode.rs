@@ -85,7 +85,7 @@ pub(crate) fn decode_file(src: &Source<'_>) -> Result<StudyFile, Vec<StudyError>
 }
 
 /// Reports every key of `table` not in `known`, suggesting the nearest known one.
-fn reject_unknown_keys(
+pub(crate) fn reject_unknown_keys(
     src: &Source<'_>,
     table: &DeTable<'_>,
     at: &KeyPath,
@@ -132,7 +132,7 @@ fn required<'a, 'i>(
 }
 
 /// Decodes one top-level section as a whole.
-fn whole<T: DeserializeOwned>(
+pub(crate) fn whole<T: DeserializeOwned>(
     src: &Source<'_>,
     root: &DeTable<'_>,
     key: &str,
@@ -145,7 +145,7 @@ fn whole<T: DeserializeOwned>(
 }
 
 /// Decodes a table of named entries, each separately.
-fn map<T: DeserializeOwned>(
+pub(crate) fn map<T: DeserializeOwned>(
     src: &Source<'_>,
     root: &DeTable<'_>,
     key: &str,

@@ -30,7 +30,7 @@ pub mod measurements;
 pub mod nearest_name;
 pub mod parameters;
 pub mod plan;
-mod source;
+pub(crate) mod source;
 pub mod spec_hash;
 pub mod stl_check;
 pub mod summary;
