@@ -194,6 +194,24 @@ pub fn isqrt_round_u128(v: u128) -> u128 {
     }
 }
 
+/// The rounded root of [`isqrt_round_u128`] from any guess `r < 2^63`: stepped down while
+/// r² > v and up while (r + 1)² ≤ v (exact integer tests, so the result does not depend on
+/// the guess; a guess within a few units costs one or two multiplications).
+#[inline(always)]
+fn round_root_from_guess(v: u128, mut r: u128) -> u128 {
+    while r * r > v {
+        r -= 1;
+    }
+    while (r + 1) * (r + 1) <= v {
+        r += 1;
+    }
+    if v - r * r > r {
+        r + 1
+    } else {
+        r
+    }
+}
+
 /// ⌊√v⌋ for `v < 2^126`, exact.
 #[inline(always)]
 pub fn isqrt_floor_u128(v: u128) -> u128 {
@@ -352,6 +370,25 @@ impl Scalar for Fx {
         let sh = 46 - e / 2;
         Fx(((y >> (sh - 1)) + 1) as i64 >> 1)
     }
+    /// One [`rsqrt_q62`] serves both: the reciprocal root exactly as [`Scalar::rsqrt`], and
+    /// the root from √X = X·Y (x·y >> 64 is √X in Q2.62; √(raw·2³²) = √X·2^(48 − e/2), so
+    /// shifting right by 14 + e/2 gives it to within a few units), then corrected exactly to
+    /// the rounded integer root of [`Scalar::sqrt`].
+    #[inline]
+    fn sqrt_rsqrt(self) -> (Self, Self) {
+        if self.0 <= 0 {
+            return (self.sqrt(), self.rsqrt());
+        }
+        let e = self.0.leading_zeros() & !1;
+        let x = (self.0 as u64) << e;
+        let y = rsqrt_q62(x);
+        let sh = 46 - e / 2;
+        let rsqrt = Fx(((y >> (sh - 1)) + 1) as i64 >> 1);
+        let sx = ((x as u128 * y as u128) >> 64) as u64;
+        let guess = (sx >> (14 + e / 2)) as u128;
+        let v = (self.0 as u128) << FRAC_BITS;
+        (Fx(round_root_from_guess(v, guess) as i64), rsqrt)
+    }
     #[inline]
     fn log2_floor(self) -> i32 {
         if self.0 == 0 || self.0 == POISON {
@@ -476,6 +513,38 @@ mod tests {
         assert_eq!(Fx::from_f64(0.25).rsqrt(), Fx::from_int(2));
         assert!(!Fx::ZERO.rsqrt().is_valid());
         assert!(!Fx::from_int(-1).rsqrt().is_valid());
+    }
+
+    #[test]
+    fn sqrt_rsqrt_matches_separate_calls() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let edges = [
+            0i64,
+            1,
+            2,
+            3,
+            1 << 32,
+            (1 << 62) - 1,
+            1 << 62,
+            i64::MAX,
+            -1,
+            i64::MIN,
+        ];
+        let randoms = (0..200_000u32).map(|k| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            ((x >> (k % 63)) as i64) & i64::MAX
+        });
+        for raw in edges.into_iter().chain(randoms) {
+            let a = Fx::from_raw(raw);
+            let (s, r) = a.sqrt_rsqrt();
+            assert_eq!(
+                (s.raw(), r.raw()),
+                (a.sqrt().raw(), a.rsqrt().raw()),
+                "{raw}"
+            );
+        }
     }
 
     #[test]

@@ -54,6 +54,13 @@ pub trait Scalar:
     /// Newton iteration, within one unit of the last place (deterministic, not always the
     /// correctly rounded value); it replaces a square root plus a division.
     fn rsqrt(self) -> Self;
+    /// (√x, 1/√x) for x > 0, bit for bit [`Scalar::sqrt`] and [`Scalar::rsqrt`]; fixed point
+    /// shares the reciprocal root between both (the root is then corrected exactly), which
+    /// saves a 128-bit integer square root per sphere contact.
+    #[inline(always)]
+    fn sqrt_rsqrt(self) -> (Self, Self) {
+        (self.sqrt(), self.rsqrt())
+    }
     /// ⌊log₂|x|⌋ for x ≠ 0 (0 for x = 0 or invalid x).
     fn log2_floor(self) -> i32;
     /// x·2^k, exact when the result is representable (fixed point rounds right shifts to

@@ -436,7 +436,8 @@ fn sphere_pair<S: Scalar>(
     // leave the normal visibly non-unit (fuzz finding F4; F1 was the |d|² = 0 case); exactly
     // coincident centres take n = +z, a deterministic choice.
     let (n, dist) = if d2 >= S::ONE {
-        (d.scale(d2.rsqrt()), d2.sqrt())
+        let (root, inv_root) = d2.sqrt_rsqrt();
+        (d.scale(inv_root), root)
     } else if let Some(u_len) = d.normalize_with_len() {
         u_len
     } else {
