@@ -60,28 +60,24 @@ fn shipped_study_calibrates_through_the_cli_and_reruns_bit_identically() {
         .collect();
     assert_eq!(labels, ["x7", "x8"]);
     let runs = ccd["runs"].as_array().unwrap();
+    let coded = |r: &serde_json::Value| -> Vec<f64> {
+        r["coded"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
     let at_centre = runs
         .iter()
-        .filter(|r| {
-            r["coded"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .all(|x| x.as_f64().unwrap() == 0.0)
-        })
+        .filter(|r| coded(r).iter().all(|&x| x == 0.0))
         .count();
     assert_eq!(at_centre, 5);
     // 4 cube + 4 axial + 5 centre runs; the axial ones at ±1.414.
     assert_eq!(runs.len(), 13);
     let axial = runs
         .iter()
-        .filter(|r| {
-            r["coded"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .any(|x| (x.as_f64().unwrap().abs() - 1.414).abs() < 1e-12)
-        })
+        .filter(|r| coded(r).iter().any(|x| (x.abs() - 1.414).abs() < 1e-12))
         .count();
     assert_eq!(axial, 4);
 

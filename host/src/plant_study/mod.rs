@@ -25,7 +25,7 @@ use crate::plant::Topology;
 use crate::plant_calibration::factors::TABLE5;
 use crate::plant_calibration::{Plan, PullOffSimulator};
 use crate::study::source::Source;
-use crate::study::{KeyPath, StudyError, StudyErrors};
+use crate::study::StudyErrors;
 pub use file_format::{PlantStudyFile, KIND_PULL_OFF};
 
 /// A plant study that passed every check (only [`PlantStudy::load`] and
@@ -57,15 +57,7 @@ pub fn is_plant_study(path: &Path) -> bool {
 impl PlantStudy {
     /// Reads, parses and validates the plant study at `path`.
     pub fn load(path: &Path) -> Result<Self, StudyErrors> {
-        let text = std::fs::read_to_string(path).map_err(|e| {
-            StudyErrors(vec![StudyError {
-                file: path.to_owned(),
-                key: KeyPath::root(),
-                position: None,
-                reason: format!("cannot read the study file: {e}"),
-            }])
-        })?;
-        Self::from_toml(&text, path)
+        Self::from_toml(&crate::study::read_study_text(path)?, path)
     }
 
     /// Parses and validates `text` as if read from `path` (which names the file in messages

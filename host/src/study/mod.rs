@@ -70,18 +70,22 @@ pub struct Varied<'a> {
     pub label: String,
 }
 
+/// The text of the study file at `path`, or the error naming it.
+pub(crate) fn read_study_text(path: &Path) -> Result<String, StudyErrors> {
+    std::fs::read_to_string(path).map_err(|e| {
+        StudyErrors(vec![StudyError {
+            file: path.to_owned(),
+            key: KeyPath::root(),
+            position: None,
+            reason: format!("cannot read the study file: {e}"),
+        }])
+    })
+}
+
 impl Study {
     /// Reads, parses and validates the study at `path`.
     pub fn load(path: &Path) -> Result<Self, StudyErrors> {
-        let text = std::fs::read_to_string(path).map_err(|e| {
-            StudyErrors(vec![StudyError {
-                file: path.to_owned(),
-                key: KeyPath::root(),
-                position: None,
-                reason: format!("cannot read the study file: {e}"),
-            }])
-        })?;
-        Self::from_toml(&text, path)
+        Self::from_toml(&read_study_text(path)?, path)
     }
 
     /// Parses and validates `text` as if read from `path` (which names the file in messages
