@@ -1,6 +1,6 @@
 //! The calibration's DEM simulator (`calibrate::DemExperiment`) on one real pile: the
-//! cheap piece of the end-to-end DEM calibration (the whole quick calibration is 35 piles,
-//! several CPU-minutes, too slow for CI; its committed output is docs/calibration-quick-dem/).
+//! cheap piece of the end-to-end DEM calibration (the whole quick calibration is 44 piles,
+//! about 16 CPU-minutes, too slow for CI; `calibrate_committed_run` replays its committed run).
 //!
 //! One quick-mode repose spec at the seed's optimum (seed 000 §3.6.2), on the test pile of
 //! `quick_pile_support` (150 pods × 3 spheres), one pile of about 13 CPU-s:
