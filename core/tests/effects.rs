@@ -26,14 +26,7 @@ fn world_on_floor<S: Scalar>(
     let steel = w.add_material(STEEL).unwrap();
     w.set_pair(pod, steel, normal_only(e)).unwrap();
     w.set_pair_effects(pod, steel, fx).unwrap();
-    w.add_wall(WallSpec::fixed(
-        WallGeometry::Plane {
-            point_m: [0.0; 3],
-            normal: [0.0, 0.0, 1.0],
-        },
-        steel,
-    ))
-    .unwrap();
+    common::add_floor(&mut w, steel);
     let mut s = SphereSpec::at_rest(pod, R_M, [0.0, 0.0, z_m]);
     s.velocity_m_s = [0.0, 0.0, -v];
     w.add_sphere(s).unwrap();

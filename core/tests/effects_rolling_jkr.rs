@@ -37,14 +37,7 @@ fn slope(o: &mut Owned<Fx>, phi: f64, mu_s: f64, cdt: f64, fx: EffectSpec) -> Wo
     w.set_pair_effects(pod, steel, fx).unwrap();
     w.set_gravity_m_s2([G * phi.sin(), 0.0, -G * phi.cos()])
         .unwrap();
-    w.add_wall(WallSpec::fixed(
-        WallGeometry::Plane {
-            point_m: [0.0; 3],
-            normal: [0.0, 0.0, 1.0],
-        },
-        steel,
-    ))
-    .unwrap();
+    common::add_floor(&mut w, steel);
     w.add_sphere(SphereSpec::at_rest(pod, R_M, [0.0, 0.0, R_M + 1e-7]))
         .unwrap();
     w.set_timestep_s(DT_S).unwrap();

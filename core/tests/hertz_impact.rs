@@ -39,14 +39,7 @@ fn impact<S: Scalar>(sphere_sphere: bool) -> (Measured, (f64, f64, f64)) {
         w.add_sphere(a).unwrap();
         w.add_sphere(b).unwrap();
     } else {
-        w.add_wall(WallSpec::fixed(
-            WallGeometry::Plane {
-                point_m: [0.0; 3],
-                normal: [0.0, 0.0, 1.0],
-            },
-            m,
-        ))
-        .unwrap();
+        common::add_floor(&mut w, m);
         let mut a = SphereSpec::at_rest(m, R_M, [0.0, 0.0, R_M + gap]);
         a.velocity_m_s = [0.0, 0.0, -V];
         w.add_sphere(a).unwrap();

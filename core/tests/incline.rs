@@ -20,14 +20,7 @@ fn slide<S: Scalar>(theta_deg: f64) -> (f64, f64, f64, f64) {
     let th = theta_deg.to_radians();
     w.set_gravity_m_s2([G * th.sin(), 0.0, -G * th.cos()])
         .unwrap();
-    w.add_wall(WallSpec::fixed(
-        WallGeometry::Plane {
-            point_m: [0.0; 3],
-            normal: [0.0, 0.0, 1.0],
-        },
-        steel,
-    ))
-    .unwrap();
+    common::add_floor(&mut w, steel);
     // A flat square "plate" (4 corner spheres, 8 mm apart, plus an overlapping centre
     // sphere): half-width 4 mm over a COM height of 2 mm, so it cannot tip below ≈ 63°.
     let r = 0.002;

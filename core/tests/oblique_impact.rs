@@ -23,14 +23,7 @@ fn oblique<S: Scalar>(mu: f64, e_in: f64) -> (f64, f64) {
         },
     )
     .unwrap();
-    w.add_wall(WallSpec::fixed(
-        WallGeometry::Plane {
-            point_m: [0.0; 3],
-            normal: [0.0, 0.0, 1.0],
-        },
-        m,
-    ))
-    .unwrap();
+    common::add_floor(&mut w, m);
     let r_m = 0.01;
     let vn = 0.2;
     let vt = 2.0; // tan θ = 10 ≫ 3.5 μ (1 + e): gross sliding

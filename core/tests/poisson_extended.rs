@@ -51,14 +51,7 @@ fn opt_in_accepts_poisson_above_half_and_follows_hertz() {
     w.set_pair(pod, steel, PairSpec::hertz_mindlin(0.339, 0.589, 0.159))
         .unwrap();
     w.set_gravity_m_s2([0.0, 0.0, -9.81]).unwrap();
-    w.add_wall(WallSpec::fixed(
-        WallGeometry::Plane {
-            point_m: [0.0; 3],
-            normal: [0.0, 0.0, 1.0],
-        },
-        steel,
-    ))
-    .unwrap();
+    common::add_floor(&mut w, steel);
     let r_mm = 4.0;
     w.add_sphere(SphereSpec::at_rest(pod, r_mm * 1e-3, [0.0, 0.0, 0.0045]))
         .unwrap();

@@ -20,14 +20,7 @@ fn measure<S: Scalar>(e: f64, v: f64) -> f64 {
     let pod = w.add_material(POD).unwrap();
     let steel = w.add_material(STEEL).unwrap();
     w.set_pair(pod, steel, normal_only(e)).unwrap();
-    w.add_wall(WallSpec::fixed(
-        WallGeometry::Plane {
-            point_m: [0.0; 3],
-            normal: [0.0, 0.0, 1.0],
-        },
-        steel,
-    ))
-    .unwrap();
+    common::add_floor(&mut w, steel);
     let mut s = SphereSpec::at_rest(pod, R_M, [0.0, 0.0, R_M + 1e-7]);
     s.velocity_m_s = [0.0, 0.0, -v];
     w.add_sphere(s).unwrap();

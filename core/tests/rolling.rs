@@ -16,14 +16,7 @@ fn roll<S: Scalar>(mu_r: f64, v0: f64) -> (f64, f64, f64) {
     w.set_pair(pod, steel, PairSpec::hertz_mindlin(0.5, 0.6, mu_r))
         .unwrap();
     w.set_gravity_m_s2([0.0, 0.0, -G]).unwrap();
-    w.add_wall(WallSpec::fixed(
-        WallGeometry::Plane {
-            point_m: [0.0; 3],
-            normal: [0.0, 0.0, 1.0],
-        },
-        steel,
-    ))
-    .unwrap();
+    common::add_floor(&mut w, steel);
     let r = 0.004;
     w.add_sphere(SphereSpec::at_rest(pod, r, [0.0, 0.0, r + 1e-7]))
         .unwrap();
@@ -94,14 +87,7 @@ fn spin_down<S: Scalar>() -> (f64, f64) {
     spec.terms.mindlin_tangential = false;
     w.set_pair(pod, steel, spec).unwrap();
     w.set_gravity_m_s2([0.0, 0.0, -G]).unwrap();
-    w.add_wall(WallSpec::fixed(
-        WallGeometry::Plane {
-            point_m: [0.0; 3],
-            normal: [0.0, 0.0, 1.0],
-        },
-        steel,
-    ))
-    .unwrap();
+    common::add_floor(&mut w, steel);
     w.add_sphere(SphereSpec::at_rest(pod, 0.004, [0.0, 0.0, 0.004 + 1e-7]))
         .unwrap();
     w.set_timestep_s(1e-5).unwrap();

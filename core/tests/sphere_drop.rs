@@ -13,14 +13,7 @@ fn drop<S: Scalar>() -> (f64, f64, u64) {
     w.set_pair(pod, steel, PairSpec::hertz_mindlin(0.339, 0.589, 0.159))
         .unwrap();
     w.set_gravity_m_s2([0.0, 0.0, -9.81]).unwrap();
-    w.add_wall(WallSpec::fixed(
-        WallGeometry::Plane {
-            point_m: [0.0; 3],
-            normal: [0.0, 0.0, 1.0],
-        },
-        steel,
-    ))
-    .unwrap();
+    common::add_floor(&mut w, steel);
     let r = 0.004;
     let h0 = 0.014; // 10 mm free fall to contact
     w.add_sphere(SphereSpec::at_rest(pod, r, [0.0, 0.0, h0]))

@@ -36,6 +36,19 @@ impl<S: Scalar> Owned<S> {
     }
 }
 
+/// Adds the fixed floor plane z = 0 (normal +z) of `material`: the plate, incline or
+/// ground most single-body tests roll, slide or drop onto.
+pub fn add_floor<S: Scalar>(w: &mut World<'_, S>, material: MaterialId) {
+    w.add_wall(WallSpec::fixed(
+        WallGeometry::Plane {
+            point_m: [0.0; 3],
+            normal: [0.0, 0.0, 1.0],
+        },
+        material,
+    ))
+    .unwrap();
+}
+
 /// Peanut pod material (seed 000 §3.1).
 pub const POD: MaterialSpec = MaterialSpec {
     youngs_modulus_pa: 8.43e6,
