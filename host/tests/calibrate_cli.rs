@@ -2,19 +2,12 @@
 //! and killing the process part-way then rerunning gives a byte-identical final JSON.
 
 use std::path::Path;
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Stdio};
 use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
-const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+mod cli_support;
+use cli_support::{arachis_at_root as arachis, REPO_ROOT as ROOT};
 const STUDY: &str = "testdata/peanut-pods-saline/study.toml";
-
-fn arachis(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_arachis"))
-        .args(args)
-        .current_dir(ROOT)
-        .output()
-        .expect("run arachis")
-}
 
 fn calibrate_args<'a>(study: &'a str, out: &'a str) -> Vec<&'a str> {
     vec![

@@ -2,15 +2,10 @@
 //! hidden drag effect (the cheapest to fit: no base parameter responds to it), plus clear
 //! errors for bad input and the "not identifiable" message for a one-condition study.
 
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn arachis(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_arachis"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
-        .output()
-        .expect("run arachis")
-}
+mod cli_support;
+use cli_support::arachis_at_root as arachis;
 
 fn ok(out: &Output) -> String {
     assert!(

@@ -2,16 +2,12 @@
 //! message, no output file).
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 use arachis::io::CsvTable;
 
-fn arachis(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_arachis"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+mod cli_support;
+use cli_support::arachis;
 
 fn design_to_file(dir: &Path, name: &str, args: &[&str]) -> (PathBuf, Output) {
     let out = dir.join(name);

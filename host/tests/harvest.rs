@@ -4,8 +4,6 @@
 //! with VTK frames. Kept cheap: a 20–40 mm drum and a 2 m/s conveyor (each pass ≈ 0.05 s
 //! simulated, ≈ 6e4 steps of ≈ 50 spheres; the file runs in ≈ 11 s release).
 
-use std::process::{Command, Output};
-
 use arachis::harvest::{
     run_harvest, run_pass, HarvestConfig, HarvestError, Machine, PlantLayout, Progress,
 };
@@ -14,6 +12,9 @@ use arachis::plant::{generate, PlantModel, Topology};
 use arachis_core::prelude::Fx;
 use serde_json::Value;
 use statrs::distribution::{ContinuousCDF, StudentsT};
+
+mod cli_support;
+use cli_support::arachis;
 
 const SMALL: &str = include_str!("../../testdata/peanut-plant/topology-small.toml");
 /// Tolerance of t and p against the independent calculation (both are f64 sums of 8 values).
@@ -37,13 +38,6 @@ fn cheap_machine() -> Machine {
 }
 
 fn quiet(_: Progress) {}
-
-fn arachis(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_arachis"))
-        .args(args)
-        .output()
-        .expect("cannot start the arachis binary")
-}
 
 #[test]
 fn every_pod_is_counted_once_and_the_t_test_matches_an_independent_calculation() {

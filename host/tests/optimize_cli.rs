@@ -5,17 +5,13 @@
 //! angles to 0.01°).
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
+
+mod cli_support;
+use cli_support::arachis;
 
 fn fixture() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../testdata/seed-tables/seed000_eq22_fit.json")
-}
-
-fn arachis(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_arachis"))
-        .args(args)
-        .output()
-        .unwrap()
 }
 
 fn optimize(fit: &Path, extra: &[&str]) -> Output {

@@ -1,14 +1,8 @@
 //! `arachis plant-calibrate` from the command line: report files, the summary line, and
 //! bad input as clear errors (exit status 2, no report written).
 
-use std::process::{Command, Output};
-
-fn arachis(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_arachis"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+mod cli_support;
+use cli_support::arachis;
 
 #[test]
 fn writes_the_report_and_prints_the_validation() {

@@ -6,9 +6,12 @@
 //! written next to a copy of its topology.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 use arachis::plant_study::PlantStudy;
+
+mod cli_support;
+use cli_support::arachis;
 
 fn study_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../testdata/peanut-plant")
@@ -16,13 +19,6 @@ fn study_dir() -> PathBuf {
 
 fn shipped() -> PathBuf {
     study_dir().join("study.toml")
-}
-
-fn arachis(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_arachis"))
-        .args(args)
-        .output()
-        .unwrap()
 }
 
 fn calibrate_into(out: &Path) -> (Output, serde_json::Value, Vec<u8>) {

@@ -5,9 +5,11 @@
 //! (the lowest start 6 mm above it and fall < 1 mm) and free fall gives exact expectations.
 
 use std::path::Path;
-use std::process::{Command, Output};
 
 use serde_json::Value;
+
+mod cli_support;
+use cli_support::arachis;
 
 /// Spheres in the test pour.
 const PARTICLES: u64 = 200;
@@ -35,13 +37,6 @@ const KEYS: [&str; 8] = [
     "com_height_m",
     "digest",
 ];
-
-fn arachis(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_arachis"))
-        .args(args)
-        .output()
-        .expect("cannot start the arachis binary")
-}
 
 /// Run a pour that must succeed and return its JSON line.
 fn pour(extra: &[&str]) -> Value {

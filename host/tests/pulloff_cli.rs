@@ -2,20 +2,14 @@
 //! (about 4 200 steps of 11 spheres: about a second in a debug build), its JSON line, its
 //! curve and VTK files, and its refusal of bad input (exit 2).
 
-use std::process::{Command, Output};
-
 use serde_json::Value;
+
+mod cli_support;
+use cli_support::arachis;
 
 /// Relative tolerance of the detachment force against σc·A of the junction (axial pull, pure
 /// tension; the core's digest test measures −3.7e-4).
 const FORCE_TOL: f64 = 0.01;
-
-fn arachis(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_arachis"))
-        .args(args)
-        .output()
-        .expect("cannot start the arachis binary")
-}
 
 #[test]
 fn default_pull_detaches_at_the_criterion_force_and_writes_files() {

@@ -2,21 +2,17 @@
 //! exit with status 2 and a message naming the file (and line and column where they apply).
 
 use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Output;
 
 use serde_json::Value;
+
+mod cli_support;
+use cli_support::arachis;
 
 fn seed_table(file: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../testdata/seed-tables")
         .join(file)
-}
-
-fn arachis(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_arachis"))
-        .args(args)
-        .output()
-        .expect("run arachis")
 }
 
 /// Runs `doe analyze` on `text` written to `name` in a temporary directory; returns the

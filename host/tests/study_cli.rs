@@ -1,14 +1,7 @@
 //! `arachis study check` on the shipped study and on a bad one, through the real binary.
 
-use std::process::Command;
-
-fn arachis(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_arachis"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
-        .output()
-        .expect("run arachis")
-}
+mod cli_support;
+use cli_support::arachis_at_root as arachis;
 
 #[test]
 fn shipped_study_checks_and_exports_json() {

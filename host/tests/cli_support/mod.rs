@@ -1,0 +1,24 @@
+//! Runs the `arachis` binary the way the CLI tests need it.
+#![allow(dead_code)]
+
+use std::process::{Command, Output};
+
+/// The repository root (where `testdata/` lies).
+pub const REPO_ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+
+/// Runs `arachis ARGS` in the test's working directory (the `host` package).
+pub fn arachis(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_arachis"))
+        .args(args)
+        .output()
+        .expect("cannot start the arachis binary")
+}
+
+/// Runs `arachis ARGS` from the repository root, so paths like `testdata/…` resolve.
+pub fn arachis_at_root(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_arachis"))
+        .args(args)
+        .current_dir(REPO_ROOT)
+        .output()
+        .expect("cannot start the arachis binary")
+}
