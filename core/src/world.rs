@@ -341,6 +341,7 @@ impl<'a, S: Scalar> World<'a, S> {
             offset: Vec3::ZERO,
             body: id,
             material: spec.material.0,
+            near_walls: 0,
         };
         self.bodies[id as usize] = body;
         self.n_spheres += 1;
@@ -452,6 +453,7 @@ impl<'a, S: Scalar> World<'a, S> {
                     offset: q3(off, LENGTH_M_TO_MM, "clump sphere offset")?,
                     body: id,
                     material: s.material.0,
+                    near_walls: 0,
                 })
                 .map_err(|_| SetupError::Capacity {
                     kind: CapacityKind::ClumpSpheres,
@@ -501,6 +503,8 @@ impl<'a, S: Scalar> World<'a, S> {
             kind: CapacityKind::Walls,
             capacity: MAX_WALLS as u32,
         })?;
+        // The new wall is in no sphere's near-wall set yet.
+        self.list_valid = false;
         Ok(WallId(id))
     }
 

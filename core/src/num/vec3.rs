@@ -87,6 +87,12 @@ impl<S: Scalar> Vec3<S> {
         Some((u.scale(r), (q * r).mul_pow2(-k)))
     }
 
+    /// |x| + |y| + |z|, an upper bound on the length without a square root.
+    #[inline(always)]
+    pub fn l1_norm(self) -> S {
+        self.x.abs() + self.y.abs() + self.z.abs()
+    }
+
     /// Component-wise product.
     #[inline(always)]
     pub fn mul_elem(self, o: Self) -> Self {

@@ -54,7 +54,7 @@ impl<S: Scalar> World<'_, S> {
                 b.angular_velocity = w;
                 let s = &mut self.spheres[b.first_sphere as usize];
                 s.position = b.position;
-                max_disp = max_disp.max(l1(dx));
+                max_disp = max_disp.max(dx.l1_norm());
             } else {
                 let rot = b.orientation.to_mat3();
                 let wb0 = rot.mul_t_vec(w0);
@@ -82,7 +82,7 @@ impl<S: Scalar> World<'_, S> {
                 let first = b.first_sphere as usize;
                 for s in self.spheres[first..first + b.sphere_count as usize].iter_mut() {
                     let p = b.position + rot.mul_vec(s.offset);
-                    max_disp = max_disp.max(l1(p - s.position));
+                    max_disp = max_disp.max((p - s.position).l1_norm());
                     s.position = p;
                     if !s.position.is_valid() {
                         return Err(overflow(id));
@@ -99,12 +99,6 @@ impl<S: Scalar> World<'_, S> {
         self.note_drift(max_disp);
         Ok(())
     }
-}
-
-/// |x| + |y| + |z|, an upper bound on the length (no square root).
-#[inline(always)]
-fn l1<S: Scalar>(v: Vec3<S>) -> S {
-    v.x.abs() + v.y.abs() + v.z.abs()
 }
 
 /// Unit vector along `v`, or `None` for the zero vector (accurate even for tiny ω, so rolling

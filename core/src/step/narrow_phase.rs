@@ -250,7 +250,7 @@ impl<S: Scalar> World<'_, S> {
                 let live = sphere_pair(&mut ctx, spheres, pairs, i, j as usize, &mut e.state)?;
                 e.partner = if live { j | LIVE_FLAG } else { j };
             }
-            if !walls.is_empty() {
+            if spheres[i].near_walls != 0 || had_wall {
                 count[i] = sphere_walls(
                     &mut ctx,
                     &spheres[i],
@@ -268,8 +268,8 @@ impl<S: Scalar> World<'_, S> {
     }
 }
 
-/// Wall contacts of sphere `si` (`cnt` entries in `list`, wall entries already un-flagged when
-/// `had_wall`). Wall entries are found by key (a sphere has a handful of entries), appended
+/// Wall contacts of sphere `si` with its near walls (`cnt` entries in `list`, wall entries
+/// already un-flagged when `had_wall`). Wall entries are found by key (a sphere has a handful of entries), appended
 /// when a contact starts and removed when it ends. Returns the new entry count.
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
@@ -286,6 +286,9 @@ fn sphere_walls<S: Scalar>(
     let k = list.len();
     let bi = s.body as usize;
     for (wi, w) in walls.iter_mut().enumerate() {
+        if s.near_walls & (1 << wi) == 0 {
+            continue;
+        }
         let mut hits: [(u32, Vec3<S>, S); 6] = [(0, Vec3::ZERO, S::ZERO); 6];
         let mut nh = 0usize;
         w.shape

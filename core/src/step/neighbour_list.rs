@@ -20,9 +20,13 @@
 //! the pair touched in the last step with its tangential term on: those are the "contacts with
 //! history" that [`World::contact_slots`] and the digest report; other entries have zero δt.
 //!
-//! Wall contacts are found each step (walls may move) and keep their history as entries keyed
-//! by wall and face in the same per-sphere list: appended when a contact starts, removed when
-//! it ends, carried over on rebuild.
+//! Walls get the same treatment: a rebuild records in [`Sphere::near_walls`] the walls each
+//! sphere lies within the skin of ([`crate::wall::WallShape::may_touch`]), and the contact
+//! loop tests only those. Wall motion adds to the drift bound like sphere motion, so a wall
+//! left out cannot touch the sphere before the next rebuild (sphere and wall together move
+//! less than s/2). Wall contacts keep their history as entries keyed by wall and face in the
+//! same per-sphere list: appended when a contact starts, removed when it ends, carried over on
+//! rebuild.
 //!
 //! More entries than `k` for one owner is [`StepError::ContactCapacity`].
 
@@ -48,6 +52,9 @@ pub(crate) fn key_of(partner: u32) -> u32 {
     partner & !LIVE_FLAG
 }
 
+// One bit per wall in `Sphere::near_walls`.
+const _: () = assert!(crate::wall::MAX_WALLS <= u16::BITS as usize);
+
 /// History of `key` in an old entry list, or zero (rebuild only).
 #[inline]
 fn carried(old: &[ContactSlot<impl Scalar>], key: u32) -> Option<usize> {
@@ -63,6 +70,7 @@ impl<S: Scalar> World<'_, S> {
         let skin = self.max_radius / S::ONE.mul_int(SKIN_DIVISOR);
         let grid = self.bin_spheres(skin);
         self.build_list(grid, skin)?;
+        self.mark_near_walls(skin);
         self.current ^= 1;
         self.list_valid = true;
         self.list_drift = S::ZERO;
@@ -70,7 +78,19 @@ impl<S: Scalar> World<'_, S> {
         Ok(())
     }
 
-    /// Add `disp` (mm, the largest sphere displacement of this step) to the drift bound and
+    /// Record in each sphere the walls it lies within `skin` (mm) of.
+    fn mark_near_walls(&mut self, skin: S) {
+        let walls = &self.walls;
+        for s in self.spheres[..self.n_spheres as usize].iter_mut() {
+            s.near_walls = walls
+                .iter()
+                .enumerate()
+                .filter(|(_, w)| w.shape.may_touch(s.position, s.radius, skin))
+                .fold(0, |mask, (id, _)| mask | 1 << id);
+        }
+    }
+
+    /// Add `disp` (mm, the largest sphere or wall displacement of this step) to the drift bound and
     /// mark the list stale once 2·drift ≥ skin (or the bound overflowed).
     pub(crate) fn note_drift(&mut self, disp: S) {
         let d = self.list_drift + disp;

@@ -31,4 +31,19 @@ impl<S: Scalar> AaBox<S> {
             }
         }
     }
+
+    /// See [`super::WallShape::may_touch`]: some face is nearer than `r + margin`.
+    #[inline]
+    pub fn may_touch(&self, c: Vec3<S>, r: S, margin: S) -> bool {
+        let reach = r + margin;
+        let gaps = [
+            c.x - self.min.x,
+            c.y - self.min.y,
+            c.z - self.min.z,
+            self.max.x - c.x,
+            self.max.y - c.y,
+            self.max.z - c.z,
+        ];
+        gaps.iter().any(|&g| !(g.is_valid() && g >= reach))
+    }
 }

@@ -45,4 +45,21 @@ impl<S: Scalar> Cylinder<S> {
             hit(0, radial.scale(S::ONE / d), overlap);
         }
     }
+
+    /// See [`super::WallShape::may_touch`]: the ends are widened by `margin` too, since a
+    /// finite cylinder's reach depends on where the centre lies along the axis.
+    #[inline]
+    pub fn may_touch(&self, c: Vec3<S>, r: S, margin: S) -> bool {
+        let rel = c - self.base;
+        let h = rel.dot(self.axis);
+        if !h.is_valid() {
+            return true;
+        }
+        if self.finite && (h < -margin || h > self.length + margin) {
+            return false;
+        }
+        let d2 = (rel - self.axis.scale(h)).norm2();
+        let inner = self.radius - r - margin;
+        !(d2.is_valid() && inner > S::ZERO && d2 < inner * inner)
+    }
 }

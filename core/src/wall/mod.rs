@@ -66,6 +66,19 @@ impl<S: Scalar> WallShape<S> {
         }
     }
 
+    /// Whether a sphere (centre `c`, radius `r`, mm) lies within `margin` (mm) of touching
+    /// this wall. Conservative: `false` only when no contact is possible until the sphere and
+    /// the wall have moved by `margin` between them; any overflow answers `true`. The
+    /// neighbour list uses it to skip far walls ([`crate::step::neighbour_list`]).
+    #[inline]
+    pub fn may_touch(&self, c: Vec3<S>, r: S, margin: S) -> bool {
+        match self {
+            WallShape::Plane(p) => p.may_touch(c, r, margin),
+            WallShape::Cylinder(y) => y.may_touch(c, r, margin),
+            WallShape::AaBox(b) => b.may_touch(c, r, margin),
+        }
+    }
+
     /// Translate by `d`, mm.
     pub fn translate(&mut self, d: Vec3<S>) {
         match self {

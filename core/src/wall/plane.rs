@@ -21,4 +21,11 @@ impl<S: Scalar> Plane<S> {
             hit(0, -self.normal, overlap);
         }
     }
+
+    /// See [`super::WallShape::may_touch`].
+    #[inline]
+    pub fn may_touch(&self, c: Vec3<S>, r: S, margin: S) -> bool {
+        let dist = (c - self.point).dot(self.normal);
+        !(dist.is_valid() && dist >= r + margin)
+    }
 }
