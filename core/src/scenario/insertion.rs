@@ -91,15 +91,17 @@ pub struct InsertionRequest {
 
 /// A sphere's centre and radius read back from the world onto the µm lattice.
 fn placed_um<S: Scalar>(s: &crate::body::Sphere<S>) -> ([i64; 3], i64) {
-    let to_um = |x: S| libm::round(x.to_f64() * MICROMETRES_PER_MM) as i64;
-    (
-        [
-            to_um(s.position.x),
-            to_um(s.position.y),
-            to_um(s.position.z),
-        ],
-        to_um(s.radius),
-    )
+    (centre_um(s.position), to_um(s.radius))
+}
+
+/// A length in mm rounded to whole micrometres (exact for inserted values, module docs).
+fn to_um<S: Scalar>(x: S) -> i64 {
+    libm::round(x.to_f64() * MICROMETRES_PER_MM) as i64
+}
+
+/// [`to_um`] of each coordinate.
+fn centre_um<S: Scalar>(p: crate::num::Vec3<S>) -> [i64; 3] {
+    [to_um(p.x), to_um(p.y), to_um(p.z)]
 }
 
 /// `true` when a sphere of radius `r` at `c` (µm) overlaps no sphere already in `world`.
@@ -153,5 +155,61 @@ pub fn insert_random_spheres<S: Scalar>(
             angular_velocity_rad_s: [0.0; 3],
         })?;
     }
+    Ok(())
+}
+
+/// Renumber the bodies of a freshly filled world of single spheres layer by layer: by
+/// height in layers `layer_um` thick, then by y in rows as thick, then by x. Insertion draws
+/// centres in random order, so neighbours get unrelated ids and the contact loop, which walks
+/// spheres by id, fetches each partner from a random place in memory; in layer order a
+/// sphere's partners sit near it in the arenas (the bench bed steps about 10 % faster).
+///
+/// The order uses the exact integer-micrometre centres of the insertion, so a fixed-point
+/// and an `f64` world built from one seed get the same ids. In place, allocation-free.
+///
+/// Errors: [`ScenarioError::NotReorderable`] if a body is a clump, bonds exist or are
+/// scheduled, or the world
+/// has stepped (ids already handed out would change meaning), or `layer_um` ≤ 0.
+pub fn order_by_layers<S: Scalar>(
+    world: &mut World<'_, S>,
+    layer_um: i64,
+) -> Result<(), ScenarioError> {
+    let n = world.n_bodies as usize;
+    if world.steps != 0
+        || layer_um <= 0
+        || world.n_spheres as usize != n
+        || world.bond_table.n != 0
+        || !world.bond_table.schedule.is_empty()
+    {
+        return Err(ScenarioError::NotReorderable);
+    }
+    if world.bodies[..n].iter().any(|b| b.is_clump) {
+        return Err(ScenarioError::NotReorderable);
+    }
+    // Centres are distinct (no overlap) and the key ends with the whole centre, so no two
+    // keys tie and the sort orders spheres and bodies alike.
+    let key = |p: [i64; 3]| {
+        (
+            p[2].div_euclid(layer_um),
+            p[1].div_euclid(layer_um),
+            p[0],
+            p[1],
+            p[2],
+        )
+    };
+    world.spheres[..n].sort_unstable_by_key(|s| key(centre_um(s.position)));
+    world.bodies[..n].sort_unstable_by_key(|b| key(centre_um(b.position)));
+    for (i, (b, s)) in world.bodies[..n]
+        .iter_mut()
+        .zip(world.spheres[..n].iter_mut())
+        .enumerate()
+    {
+        if b.position != s.position {
+            return Err(ScenarioError::NotReorderable);
+        }
+        b.first_sphere = i as u32;
+        s.body = i as u32;
+    }
+    world.list_valid = false;
     Ok(())
 }

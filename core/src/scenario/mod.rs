@@ -80,6 +80,9 @@ pub enum ScenarioError {
         /// Candidates drawn for the sphere that failed.
         attempts_per_sphere: u32,
     },
+    /// Ordering by layers ([`insertion::order_by_layers`]) needs a world of single spheres
+    /// that has not stepped yet.
+    NotReorderable,
 }
 
 impl From<SetupError> for ScenarioError {
@@ -120,6 +123,11 @@ impl fmt::Display for ScenarioError {
                 f,
                 "random insertion placed only {placed} of {requested} particles: no free \
                  place found in {attempts_per_sphere} attempts; ask for fewer particles"
+            ),
+            ScenarioError::NotReorderable => write!(
+                f,
+                "spheres can only be ordered by layers in a world of single spheres that \
+                 has not stepped yet"
             ),
         }
     }
