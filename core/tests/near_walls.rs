@@ -165,13 +165,7 @@ fn brute_force_wall_contacts(w: &World<'_, Fx>) -> BTreeSet<(u32, u32)> {
 fn fast_walls_never_miss_a_contact() {
     const SPHERES: usize = 120;
     let mut o = Owned::<Fx>::new(SPHERES, SPHERES);
-    let mut w = World::new(o.storage()).unwrap();
-    let pod = w.add_material(POD).unwrap();
-    let steel = w.add_material(STEEL).unwrap();
-    w.set_pair(pod, pod, PairSpec::hertz_mindlin(0.5, 0.5, 0.0))
-        .unwrap();
-    w.set_pair(pod, steel, PairSpec::hertz_mindlin(0.5, 0.5, 0.0))
-        .unwrap();
+    let (mut w, pod, steel) = pod_steel_world(&mut o, PairSpec::hertz_mindlin(0.5, 0.5, 0.0));
     // Container walls at 1–1.5 m/s (20–30 µm per step; the skin is 0.5 mm) that close in on
     // the cloud: a rising floor, an infinite cylinder and a tall finite one moving across
     // their axes, and a box moving sideways.

@@ -6,14 +6,7 @@ use arachis_core::prelude::*;
 use common::*;
 
 fn world_with<S: Scalar>(o: &mut Owned<S>) -> (World<'_, S>, MaterialId, MaterialId) {
-    let mut w = World::new(o.storage()).unwrap();
-    let pod = w.add_material(POD).unwrap();
-    let steel = w.add_material(STEEL).unwrap();
-    w.set_pair(pod, steel, PairSpec::hertz_mindlin(0.9, 0.0, 0.0))
-        .unwrap();
-    w.set_pair(pod, pod, PairSpec::hertz_mindlin(0.9, 0.0, 0.0))
-        .unwrap();
-    (w, pod, steel)
+    pod_steel_world(o, PairSpec::hertz_mindlin(0.9, 0.0, 0.0))
 }
 
 #[test]

@@ -49,6 +49,20 @@ pub fn add_floor<S: Scalar>(w: &mut World<'_, S>, material: MaterialId) {
     .unwrap();
 }
 
+/// A world over `o` with pod and steel materials and `pair` for pod–pod and pod–steel
+/// contacts: the set-up of the wall tests. Returns the world and the (pod, steel) ids.
+pub fn pod_steel_world<S: Scalar>(
+    o: &mut Owned<S>,
+    pair: PairSpec,
+) -> (World<'_, S>, MaterialId, MaterialId) {
+    let mut w = World::new(o.storage()).unwrap();
+    let pod = w.add_material(POD).unwrap();
+    let steel = w.add_material(STEEL).unwrap();
+    w.set_pair(pod, steel, pair).unwrap();
+    w.set_pair(pod, pod, pair).unwrap();
+    (w, pod, steel)
+}
+
 /// Peanut pod material (seed 000 §3.1).
 pub const POD: MaterialSpec = MaterialSpec {
     youngs_modulus_pa: 8.43e6,
