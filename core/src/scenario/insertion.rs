@@ -168,8 +168,8 @@ pub fn insert_random_spheres<S: Scalar>(
 /// and an `f64` world built from one seed get the same ids. In place, allocation-free.
 ///
 /// Errors: [`ScenarioError::NotReorderable`] if a body is a clump, bonds exist or are
-/// scheduled, or the world
-/// has stepped (ids already handed out would change meaning), or `layer_um` ≤ 0.
+/// scheduled, the world has stepped (ids already handed out would change meaning), or
+/// `layer_um` ≤ 0.
 pub fn order_by_layers<S: Scalar>(
     world: &mut World<'_, S>,
     layer_um: i64,

@@ -80,8 +80,8 @@ pub enum ScenarioError {
         /// Candidates drawn for the sphere that failed.
         attempts_per_sphere: u32,
     },
-    /// Ordering by layers ([`insertion::order_by_layers`]) needs a world of single spheres
-    /// that has not stepped yet.
+    /// Ordering by layers ([`insertion::order_by_layers`]) needs a world of single spheres,
+    /// without bonds, that has not stepped yet, and a positive layer thickness.
     NotReorderable,
 }
 
@@ -126,8 +126,8 @@ impl fmt::Display for ScenarioError {
             ),
             ScenarioError::NotReorderable => write!(
                 f,
-                "spheres can only be ordered by layers in a world of single spheres that \
-                 has not stepped yet"
+                "spheres can only be ordered by layers in a world of single spheres, \
+                 without bonds, that has not stepped yet, and with a positive layer thickness"
             ),
         }
     }
