@@ -12,7 +12,7 @@ use super::read_topology;
 use crate::plant::topology::BondSet;
 use crate::plant_calibration::factors::{by_label, TABLE5};
 use crate::plant_calibration::plan::check_carry;
-use crate::study::decode::{map, reject_unknown_keys, whole};
+use crate::study::decode::{map, root_sections, whole};
 use crate::study::source::Source;
 use crate::study::{nearest_name, KeyPath, StudyError};
 
@@ -29,16 +29,7 @@ pub const MAX_STALK_SPHERES: u32 = 64;
 
 /// Decodes every section, or returns every structural error found.
 pub(crate) fn decode(src: &Source<'_>) -> Result<PlantStudyFile, Vec<StudyError>> {
-    let root = src.doc.get_ref();
-    let mut errors = Vec::new();
-    reject_unknown_keys(
-        src,
-        root,
-        &KeyPath::root(),
-        &SECTIONS,
-        "section",
-        &mut errors,
-    );
+    let (root, mut errors) = root_sections(src, &SECTIONS);
     let study = whole(src, root, "study", &mut errors);
     let rig = whole(src, root, "rig", &mut errors);
     let measurement = whole(src, root, "measurement", &mut errors);

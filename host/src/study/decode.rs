@@ -35,16 +35,7 @@ const PLAN_KEYS: [&str; 9] = [
 
 /// Decodes the whole file, or returns every structural error found.
 pub(crate) fn decode_file(src: &Source<'_>) -> Result<StudyFile, Vec<StudyError>> {
-    let root = src.doc.get_ref();
-    let mut errors = Vec::new();
-    reject_unknown_keys(
-        src,
-        root,
-        &KeyPath::root(),
-        &SECTIONS,
-        "section",
-        &mut errors,
-    );
+    let (root, mut errors) = root_sections(src, &SECTIONS);
 
     let study = whole(src, root, "study", &mut errors);
     let materials = map(src, root, "materials", &mut errors);
@@ -109,6 +100,25 @@ pub(crate) fn reject_unknown_keys(
             ));
         }
     }
+}
+
+/// The file's root table, and the errors of its unknown top-level sections (any name not in
+/// `sections`): where every study decoder starts.
+pub(crate) fn root_sections<'a, 'i>(
+    src: &'a Source<'i>,
+    sections: &[&str],
+) -> (&'a DeTable<'i>, Vec<StudyError>) {
+    let root = src.doc.get_ref();
+    let mut errors = Vec::new();
+    reject_unknown_keys(
+        src,
+        root,
+        &KeyPath::root(),
+        sections,
+        "section",
+        &mut errors,
+    );
+    (root, errors)
 }
 
 /// The value at `key` of `table`, or an error saying it is missing.
