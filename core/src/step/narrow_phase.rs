@@ -269,8 +269,9 @@ impl<S: Scalar> World<'_, S> {
 }
 
 /// Wall contacts of sphere `si` with its near walls (`cnt` entries in `list`, wall entries
-/// already un-flagged when `had_wall`). Wall entries are found by key (a sphere has a handful of entries), appended
-/// when a contact starts and removed when it ends. Returns the new entry count.
+/// already un-flagged when `had_wall`). Wall entries are found by key (a sphere has a
+/// handful of entries), appended when a contact starts and removed when it ends. Returns the
+/// new entry count.
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn sphere_walls<S: Scalar>(

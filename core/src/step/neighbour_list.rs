@@ -90,8 +90,8 @@ impl<S: Scalar> World<'_, S> {
         }
     }
 
-    /// Add `disp` (mm, the largest sphere or wall displacement of this step) to the drift bound and
-    /// mark the list stale once 2·drift ≥ skin (or the bound overflowed).
+    /// Add `disp` (mm, the largest sphere or wall displacement of this step) to the drift
+    /// bound and mark the list stale once 2·drift ≥ skin (or the bound overflowed).
     pub(crate) fn note_drift(&mut self, disp: S) {
         let d = self.list_drift + disp;
         self.list_drift = d;

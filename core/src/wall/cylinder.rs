@@ -20,15 +20,22 @@ pub struct Cylinder<S> {
 }
 
 impl<S: Scalar> Cylinder<S> {
+    /// The point `c` (mm) as its height along the axis from `base` (mm) and its radial
+    /// offset from the axis (mm).
+    #[inline(always)]
+    fn axial_radial(&self, c: Vec3<S>) -> (S, Vec3<S>) {
+        let rel = c - self.base;
+        let h = rel.dot(self.axis);
+        (h, rel - self.axis.scale(h))
+    }
+
     /// See [`super::WallShape::for_each_contact`]. One face (0).
     #[inline(always)]
     pub fn for_each_contact(&self, c: Vec3<S>, r: S, mut hit: impl FnMut(u32, Vec3<S>, S)) {
-        let rel = c - self.base;
-        let h = rel.dot(self.axis);
+        let (h, radial) = self.axial_radial(c);
         if self.finite && (h < S::ZERO || h > self.length) {
             return;
         }
-        let radial = rel - self.axis.scale(h);
         let d2 = radial.norm2();
         let inner = self.radius - r;
         // Cheap rejection without a square root: fully inside the contact-free core.
@@ -50,15 +57,14 @@ impl<S: Scalar> Cylinder<S> {
     /// finite cylinder's reach depends on where the centre lies along the axis.
     #[inline]
     pub fn may_touch(&self, c: Vec3<S>, r: S, margin: S) -> bool {
-        let rel = c - self.base;
-        let h = rel.dot(self.axis);
+        let (h, radial) = self.axial_radial(c);
         if !h.is_valid() {
             return true;
         }
         if self.finite && (h < -margin || h > self.length + margin) {
             return false;
         }
-        let d2 = (rel - self.axis.scale(h)).norm2();
+        let d2 = radial.norm2();
         let inner = self.radius - r - margin;
         !(d2.is_valid() && inner > S::ZERO && d2 < inner * inner)
     }
