@@ -67,16 +67,36 @@ impl Fx {
     pub fn to_i32f32(self) -> fixed::types::I32F32 {
         fixed::types::I32F32::from_bits(self.0)
     }
+    /// A Q64.64 product (or sum of products) rounded to nearest Q32.32, poisoned unless it fits.
+    /// With q = p + 2^31, the result q >> 32 fits an i64 iff the high word h = q >> 64 fits an
+    /// i32: the same test as [`Fx::check`] on the shifted value, in two instructions.
+    #[inline(always)]
+    fn round_product(p: i128) -> Fx {
+        let q = p.wrapping_add(1i128 << (FRAC_BITS - 1));
+        let high = (q >> 64) as i64;
+        if high != high as i32 as i64 {
+            return poisoned();
+        }
+        Fx((q >> FRAC_BITS) as i64)
+    }
     #[inline(always)]
     fn check(r: i128) -> Fx {
-        // r fits an i64 iff bits 63..127 are all equal; POISON itself is also refused.
+        // r fits an i64 iff bits 63..127 are all equal (a result equal to POISON is POISON).
         let lo = r as i64;
-        if (lo as i128 != r) | (lo == POISON) {
-            Fx::POISON
-        } else {
-            Fx(lo)
+        if lo as i128 != r {
+            return poisoned();
         }
+        Fx(lo)
     }
+}
+
+/// The poison, returned from a cold function so that the overflow tests compile to branches
+/// the processor predicts as not taken, rather than to conditional moves: a conditional move
+/// puts each test on the value's dependency chain, a branch takes it off.
+#[cold]
+#[inline(never)]
+fn poisoned() -> Fx {
+    Fx::POISON
 }
 
 impl core::fmt::Debug for Fx {
@@ -95,10 +115,9 @@ impl Add for Fx {
     fn add(self, rhs: Fx) -> Fx {
         let (r, o) = self.0.overflowing_add(rhs.0);
         if o | (self.0 == POISON) | (rhs.0 == POISON) {
-            Fx::POISON
-        } else {
-            Fx(r)
+            return poisoned();
         }
+        Fx(r)
     }
 }
 impl Sub for Fx {
@@ -106,11 +125,11 @@ impl Sub for Fx {
     #[inline(always)]
     fn sub(self, rhs: Fx) -> Fx {
         let (r, o) = self.0.overflowing_sub(rhs.0);
-        if o | (self.0 == POISON) | (rhs.0 == POISON) | (r == POISON) {
-            Fx::POISON
-        } else {
-            Fx(r)
+        // A result equal to POISON is POISON already.
+        if o | (self.0 == POISON) | (rhs.0 == POISON) {
+            return poisoned();
         }
+        Fx(r)
     }
 }
 impl Neg for Fx {
@@ -127,10 +146,10 @@ impl Mul for Fx {
     #[inline(always)]
     fn mul(self, rhs: Fx) -> Fx {
         if (self.0 == POISON) | (rhs.0 == POISON) {
-            return Fx::POISON;
+            return poisoned();
         }
         let p = (self.0 as i128) * (rhs.0 as i128);
-        Fx::check((p + (1i128 << (FRAC_BITS - 1))) >> FRAC_BITS)
+        Fx::round_product(p)
     }
 }
 impl Div for Fx {
@@ -323,7 +342,7 @@ impl Scalar for Fx {
     }
     #[inline(always)]
     fn dot3(a: Self, b: Self, c: Self, d: Self, e: Self, f: Self) -> Self {
-        let poisoned = (a.0 == POISON)
+        let any_poison = (a.0 == POISON)
             | (b.0 == POISON)
             | (c.0 == POISON)
             | (d.0 == POISON)
@@ -335,22 +354,22 @@ impl Scalar for Fx {
         // |p| ≤ 2^126: the sum of three can exceed i128 only for operands near the range limits.
         let (s, o1) = p1.overflowing_add(p2);
         let (s, o2) = s.overflowing_add(p3);
-        if poisoned | o1 | o2 {
-            return Fx::POISON;
+        if any_poison | o1 | o2 {
+            return poisoned();
         }
-        Fx::check((s + (1i128 << (FRAC_BITS - 1))) >> FRAC_BITS)
+        Fx::round_product(s)
     }
     #[inline(always)]
     fn mul_sub(a: Self, b: Self, c: Self, d: Self) -> Self {
-        let poisoned = (a.0 == POISON) | (b.0 == POISON) | (c.0 == POISON) | (d.0 == POISON);
+        let any_poison = (a.0 == POISON) | (b.0 == POISON) | (c.0 == POISON) | (d.0 == POISON);
         let p1 = a.0 as i128 * b.0 as i128;
         let p2 = c.0 as i128 * d.0 as i128;
         // |p1 − p2| ≤ 2^127 overflows only at exactly −2^63·−2^63 − …, excluded by POISON.
         let (s, o) = p1.overflowing_sub(p2);
-        if poisoned | o {
-            return Fx::POISON;
+        if any_poison | o {
+            return poisoned();
         }
-        Fx::check((s + (1i128 << (FRAC_BITS - 1))) >> FRAC_BITS)
+        Fx::round_product(s)
     }
     #[inline(always)]
     fn floor_i64(self) -> i64 {
@@ -425,6 +444,39 @@ mod tests {
         assert_eq!((eps * Fx::from_f64(0.25)).raw(), 0);
         assert_eq!((Fx::from_raw(-1) * Fx::from_f64(0.25)).raw(), 0);
         assert_eq!((Fx::from_f64(-1.5) * Fx::from_f64(2.0)).to_f64(), -3.0);
+    }
+
+    #[test]
+    fn round_product_matches_the_shift_then_check_definition() {
+        // Reference: add ½ unit, shift, keep the result only if it fits an i64.
+        let reference = |p: i128| match p.checked_add(1 << (FRAC_BITS - 1)) {
+            Some(q) => Fx::check(q >> FRAC_BITS),
+            None => Fx::POISON,
+        };
+        let unit = 1i128 << FRAC_BITS;
+        let check = |p: i128| assert_eq!(Fx::round_product(p), reference(p), "{p}");
+        for base in [0, i64::MAX as i128, i64::MIN as i128, i64::MAX as i128 + 1] {
+            for d in -2..=2 {
+                // Products whose rounded quotient is base + d, and the rounding ties around it.
+                let q = (base + d) * unit;
+                [q, q - unit / 2, q - unit / 2 - 1, q + unit / 2 - 1]
+                    .into_iter()
+                    .for_each(check);
+            }
+        }
+        [i128::MAX, i128::MIN, i128::MAX - unit / 2, i128::MIN + 1]
+            .into_iter()
+            .for_each(check);
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let randoms = (0..200_000u32).map(|k| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let a = (x as i64) >> (k % 64);
+            let b = (x.rotate_left(29) as i64) >> ((k / 64) % 64);
+            a as i128 * b as i128
+        });
+        randoms.for_each(check);
     }
 
     #[test]
