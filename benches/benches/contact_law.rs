@@ -1,6 +1,11 @@
-//! Micro benchmark of the contact law alone: [`PairParams::evaluate`] on one pod–pod contact
-//! (all Hertz–Mindlin + CDT terms on), fixed point and f64. The broad and narrow phases are
-//! crate-private in `arachis-core`, so they are measured only inside the bench bed.
+//! Micro benchmarks of the contact law alone, fixed point and f64:
+//! - `contact_law_evaluate`: [`PairParams::evaluate`] on one pod–pod contact (all
+//!   Hertz–Mindlin + CDT terms on);
+//! - `contact_roots`: the two square roots the narrow phase takes per contact, a = √(R*α) and
+//!   √(a·m*) (seed 000 eqs. (2), (4)), over overlaps of the settled bed.
+//!
+//! The broad and narrow phases are crate-private in `arachis-core`, so they are measured only
+//! inside the bench bed.
 //!
 //! Run: `cargo bench -p arachis-benches --bench contact_law`.
 
@@ -66,5 +71,30 @@ fn law(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, law);
+/// Overlaps α (mm) spread over a settled bed's range, so the roots see varied inputs.
+const ROOT_OVERLAPS_MM: [f64; 8] = [0.002, 0.005, 0.009, 0.014, 0.018, 0.025, 0.04, 0.07];
+
+fn bench_roots<S: Scalar>(g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>) {
+    let r_star = S::from_f64(2.0);
+    let m_star = S::from_f64(0.078);
+    let overlaps = ROOT_OVERLAPS_MM.map(S::from_f64);
+    g.bench_function(S::NAME, |b| {
+        b.iter(|| {
+            overlaps.map(|alpha| {
+                let a = (black_box(r_star) * alpha).sqrt();
+                (a, (a * black_box(m_star)).sqrt())
+            })
+        })
+    });
+}
+
+fn roots(c: &mut Criterion) {
+    let mut g = c.benchmark_group("contact_roots");
+    g.throughput(Throughput::Elements(ROOT_OVERLAPS_MM.len() as u64));
+    bench_roots::<Fx>(&mut g);
+    bench_roots::<f64>(&mut g);
+    g.finish();
+}
+
+criterion_group!(benches, law, roots);
 criterion_main!(benches);

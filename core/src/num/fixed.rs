@@ -198,14 +198,24 @@ impl SubAssign for Fx {
 /// Integer square root of a `u128`, rounded to nearest: the unique r with
 /// (r − ½)² ≤ v < (r + ½)².
 ///
-/// By default the integer-only `isqrt` of `core` is used (stepping is integer-only, DESIGN §5).
+/// By default the root is integer-only (stepping is integer-only, DESIGN §5): the
+/// multiplication-only [`isqrt_round_u64`] below 2^64, `core`'s `isqrt` above.
 /// With the `float-estimate` feature an `f64` estimate is corrected to the exact integer root
 /// with integer multiply-and-compare, so the result does not depend on the estimate. Tests
 /// check both agree.
 #[inline]
 pub fn isqrt_round_u128(v: u128) -> u128 {
-    let r = isqrt_floor_u128(v);
-    // (r + 1/2)² = r² + r + 1/4: round up when v - r² > r.
+    #[cfg(not(feature = "float-estimate"))]
+    if v <= u64::MAX as u128 {
+        return isqrt_round_u64(v as u64) as u128;
+    }
+    round_floor_root(v, isqrt_floor_u128(v))
+}
+
+/// The rounded root from the floor root r = ⌊√v⌋: (r + ½)² = r² + r + ¼, so round up when
+/// v − r² > r.
+#[inline(always)]
+fn round_floor_root(v: u128, r: u128) -> u128 {
     if v - r * r > r {
         r + 1
     } else {
@@ -213,22 +223,54 @@ pub fn isqrt_round_u128(v: u128) -> u128 {
     }
 }
 
-/// The rounded root of [`isqrt_round_u128`] from any guess `r < 2^63`: stepped down while
-/// r² > v and up while (r + 1)² ≤ v (exact integer tests, so the result does not depend on
-/// the guess; a guess within a few units costs one or two multiplications).
+/// The rounded root of [`isqrt_round_u128`] from a guess `r < 2^63` that is usually within
+/// two units of it (see [`nearest_root`]); any other guess takes the exact stepping of
+/// [`round_root_from_far_guess`], so the result never depends on the guess.
 #[inline(always)]
-fn round_root_from_guess(v: u128, mut r: u128) -> u128 {
+fn round_root_from_guess(v: u128, r: u128) -> u128 {
+    // |v − r²| < 2^127 for r < 2^63 and v < 2^126, so the wrapped difference is exact; a
+    // residual beyond the i64 range is far from any guess within two units.
+    if r >> NEAREST_ROOT_GUESS_BITS != 0 {
+        return round_root_from_far_guess(v, r);
+    }
+    let d = v.wrapping_sub(r.wrapping_mul(r)) as i128;
+    let d = d.clamp(i64::MIN as i128, i64::MAX as i128) as i64;
+    match nearest_root(d, r as i64) {
+        Some(root) => root as u128,
+        None => round_root_from_far_guess(v, r),
+    }
+}
+
+/// Guesses below 2^60 keep the bounds 5r + 6 of [`nearest_root`] inside i64.
+const NEAREST_ROOT_GUESS_BITS: u32 = 60;
+
+/// The rounded root r' of v from a guess 0 ≤ r < 2^60 and its residual d = v − r², if r' is
+/// within two units of r. The rounded root is the r' with r'² − r' < v ≤ r'² + r', so it is
+/// r + 1 for r < d ≤ 3r + 2, r + 2 for 3r + 2 < d ≤ 5r + 6, and likewise below: exact integer
+/// comparisons, made without branches, because a guess's last unit is random and a branch on
+/// it is mispredicted often.
+#[inline(always)]
+fn nearest_root(d: i64, r: i64) -> Option<i64> {
+    if d <= 6 - 5 * r || d > 5 * r + 6 {
+        return None;
+    }
+    let up = (d > r) as i64 + (d > 3 * r + 2) as i64;
+    let down = (d <= -r) as i64 + (d <= 2 - 3 * r) as i64;
+    Some(r + up - down)
+}
+
+/// [`round_root_from_guess`] for a guess more than two units off (or r < 2): stepped down
+/// while r² > v and up while (r + 1)² ≤ v, then rounded.
+#[cold]
+#[inline(never)]
+fn round_root_from_far_guess(v: u128, mut r: u128) -> u128 {
     while r * r > v {
         r -= 1;
     }
     while (r + 1) * (r + 1) <= v {
         r += 1;
     }
-    if v - r * r > r {
-        r + 1
-    } else {
-        r
-    }
+    round_floor_root(v, r)
 }
 
 /// ⌊√v⌋ for `v < 2^126`, exact.
@@ -278,6 +320,43 @@ const RSQRT_TABLE: [u16; RSQRT_TABLE_LEN] = {
     }
     t
 };
+
+/// [`isqrt_round_u128`] for a `u64`, with multiplications and comparisons only (the `isqrt`
+/// of `core` takes three hardware divisions, and this root is on every contact's path twice:
+/// a = √(R*α) and √(a·m*), seed 000 eqs. (2), (4)).
+///
+/// With v = x/4^h, x ∈ [2^62, 2^64), X = x/2^64: the [`RSQRT_TABLE`] value t₀ ≈ 2^30/√X
+/// (≈ 9 bits) and one Newton step t₁ = t₀(3 − X·t₀²)/2 (≈ 17 bits) give the guess
+/// r ≈ x·t₁/2^62 >> h ≈ √v, and one residual step r ← r + (v − r²)/(2√v), with
+/// 1/(2√v) = t₁·2^h/2^63, brings it within two units of the root (all but 31 of 5·10^7
+/// random inputs above 2^32), which [`round_root_from_guess`] finishes exactly.
+#[inline(always)]
+#[cfg_attr(feature = "float-estimate", allow(dead_code))]
+fn isqrt_round_u64(v: u64) -> u64 {
+    if v == 0 {
+        return 0;
+    }
+    let half = v.leading_zeros() / 2;
+    let x = v << (2 * half);
+    let t0 = (RSQRT_TABLE[(x >> 56) as usize - 64] as u64) << 16; // Q30, ≤ 2^31
+    let t0_sq = (t0 * t0) >> 30; // Q30, ≤ 2^32
+    let x_t0_sq = ((x >> 32) * t0_sq) >> 32; // X·t₀², Q30, < 3·2^30
+    let t1 = (t0 * ((3u64 << 30) - x_t0_sq)) >> 31; // Q30, < 2^31
+
+    // x·4t₁/2^64 = x·t₁/2^62 ≈ √x; shifted by h, ≈ √v (< 2^33).
+    let mut r = (((x as u128 * (t1 << 2) as u128) >> 64) as u64 >> half) as i64;
+    // |v − r²| < 2^50 (r is within 2^-16 of √v), so the wrapped difference is exact, and its
+    // shift by h + 1 stays below 2^52.
+    let residual = v.wrapping_sub((r as u64).wrapping_mul(r as u64)) as i64;
+    r += (((residual << (half + 1)) as i128 * t1 as i128) >> 64) as i64;
+    // r is within a few units of √v < 2^32 now, so |v − r²| < 2^36 and the wrapped residual
+    // is exact.
+    let d = v.wrapping_sub((r as u64).wrapping_mul(r as u64)) as i64;
+    match nearest_root(d, r) {
+        Some(root) => root as u64,
+        None => round_root_from_far_guess(v as u128, r.max(0) as u128) as u64,
+    }
+}
 
 /// Q2.62 reciprocal square root Y = 1/√X of X = x/2^64 ∈ [¼, 1) (x ≥ 2^62), with integer
 /// multiplications only: the table value (≈ 9 bits) refined by three Newton steps
@@ -535,6 +614,71 @@ mod tests {
             let n = v % (d << 63);
             assert_eq!(udivrem(n, d), (n / d, n % d), "{n} / {d}");
         }
+    }
+
+    #[test]
+    fn u64_root_is_exact_at_squares_and_between() {
+        // Every k² − k, k², k² + k, k² + k + 1 around each power of two (the rounding edges),
+        // the largest inputs, and 10^6 random values spread over all magnitudes, against the
+        // rounded `core` isqrt.
+        let mut cases = [
+            0u64,
+            1,
+            2,
+            3,
+            u64::MAX,
+            u64::MAX - 1,
+            1 << 62,
+            (1 << 62) - 1,
+        ]
+        .to_vec();
+        for b in 0..32u32 {
+            for k in [(1u64 << b) - 1, 1u64 << b, (1u64 << b) + 1] {
+                let sq = k * k;
+                cases.extend([sq - k, sq, sq + k, sq + k + 1]);
+            }
+        }
+        let mut x = 0xd1b5_4a32_d192_ed03u64;
+        for k in 0..1_000_000u32 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            cases.push(x >> (k % 64));
+        }
+        for v in cases {
+            let floor = v.isqrt() as u128;
+            let rounded = round_floor_root(v as u128, floor) as u64;
+            assert_eq!(isqrt_round_u64(v), rounded, "√{v}");
+        }
+    }
+
+    #[test]
+    fn root_from_any_guess_is_exact() {
+        // Guesses 0..5 units either side of the rounded root (the branch-free ladder and both
+        // of its edges), guesses 40 units off, and a guess at or above 2^60 (these three step).
+        let mut x = 0x5851_f42d_4c95_7f2du64;
+        for k in 0..20_000u32 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = ((x as u128) << (k % 32)) | 1;
+            // Also the rounding edges of a root n: v = n² − n rounds down, n² − n + 1 up, and
+            // n² + n down, n² + n + 1 up.
+            let n = (x >> 16) as u128 + 2;
+            for v in [v, n * n - n, n * n - n + 1, n * n + n, n * n + n + 1] {
+                let exact = round_floor_root(v, v.isqrt());
+                for offset in -5i128..=5 {
+                    let guess = (exact as i128 + offset).max(0) as u128;
+                    assert_eq!(round_root_from_guess(v, guess), exact, "√{v} from {guess}");
+                }
+                for far in [exact + 40, exact.saturating_sub(40)] {
+                    assert_eq!(round_root_from_guess(v, far), exact, "√{v} from {far}");
+                }
+            }
+        }
+        let v = 1u128 << 122;
+        let exact = 1u128 << 61;
+        assert_eq!(round_root_from_guess(v, exact + 3), exact);
     }
 
     #[test]
