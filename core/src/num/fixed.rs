@@ -515,6 +515,14 @@ impl Scalar for Fx {
 mod tests {
     use super::*;
 
+    /// Marsaglia's xorshift64: a cheap deterministic stream of test operands.
+    fn xorshift(mut x: u64) -> u64 {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        x
+    }
+
     #[test]
     fn mul_rounds_to_nearest() {
         // 2^-32 * 0.5 = 2^-33 → ties round up to 2^-32; 2^-32 * 0.25 → 0.
@@ -548,9 +556,7 @@ mod tests {
             .for_each(check);
         let mut x = 0x9e37_79b9_7f4a_7c15u64;
         let randoms = (0..200_000u32).map(|k| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            x = xorshift(x);
             let a = (x as i64) >> (k % 64);
             let b = (x.rotate_left(29) as i64) >> ((k / 64) % 64);
             a as i128 * b as i128
@@ -605,9 +611,7 @@ mod tests {
     fn fast_paths_match_integer_reference() {
         let mut x = 0x9e37_79b9_7f4a_7c15u64;
         for k in 0..200_000u32 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            x = xorshift(x);
             let v = ((x as u128) << (k % 63)) | (k as u128);
             assert_eq!(isqrt_floor_u128(v), v.isqrt(), "sqrt {v}");
             let d = ((x >> (k % 61)) | 1) as u128;
@@ -640,9 +644,7 @@ mod tests {
         }
         let mut x = 0xd1b5_4a32_d192_ed03u64;
         for k in 0..1_000_000u32 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            x = xorshift(x);
             cases.push(x >> (k % 64));
         }
         for v in cases {
@@ -658,9 +660,7 @@ mod tests {
         // of its edges), guesses 40 units off, and a guess at or above 2^60 (these three step).
         let mut x = 0x5851_f42d_4c95_7f2du64;
         for k in 0..20_000u32 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            x = xorshift(x);
             let v = ((x as u128) << (k % 32)) | 1;
             // Also the rounding edges of a root n: v = n² − n rounds down, n² − n + 1 up, and
             // n² + n down, n² + n + 1 up.
@@ -686,9 +686,7 @@ mod tests {
         // Against an exact integer reference: r = 2^48/√raw ⇔ r²·raw = 2^96.
         let mut x = 0x2545_f491_4f6c_dd1du64;
         for k in 0..100_000u32 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            x = xorshift(x);
             let raw = ((x >> (k % 63)) | 1) as i64 & i64::MAX;
             let r = Fx::from_raw(raw).rsqrt().raw() as u128;
             let target = 1u128 << 96;
@@ -727,9 +725,7 @@ mod tests {
             i64::MIN,
         ];
         let randoms = (0..200_000u32).map(|k| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            x = xorshift(x);
             ((x >> (k % 63)) as i64) & i64::MAX
         });
         for raw in edges.into_iter().chain(randoms) {
