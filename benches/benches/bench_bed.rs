@@ -15,6 +15,7 @@
 //! Run: `cargo bench -p arachis-benches --bench bench_bed` (all), or filter, e.g.
 //! `cargo bench -p arachis-benches --bench bench_bed -- bed_pour_start`.
 
+use arachis_core::owned::OwnedStorage;
 use arachis_core::prelude::*;
 use arachis_core::scenario::bench_bed::{BenchBed, DESIGN_PARTICLES, DESIGN_SETTLE_STEPS};
 use criterion::measurement::WallTime;
@@ -34,36 +35,16 @@ const POUR_START_STEPS: u64 = 2_000;
 const SAMPLES: usize = 10;
 
 /// Owned arenas of one bench bed (the scenario module is `no_std` without `alloc`).
-struct BedStorage<S> {
-    bodies: Vec<Body<S>>,
-    spheres: Vec<Sphere<S>>,
-    contacts: Vec<ContactSlot<S>>,
-    index: Vec<u32>,
-    cells: Vec<u32>,
-}
+struct BedStorage<S: Scalar>(OwnedStorage<S>);
 
 impl<S: Scalar> BedStorage<S> {
     fn new(bed: &BenchBed) -> Self {
-        let l = bed.storage_lengths();
-        BedStorage {
-            bodies: vec![Body::default(); l.bodies],
-            spheres: vec![Sphere::default(); l.spheres],
-            contacts: vec![ContactSlot::default(); l.contacts],
-            index: vec![0; l.sphere_index],
-            cells: vec![0; l.cells],
-        }
+        BedStorage(OwnedStorage::new(bed.storage_lengths()))
     }
 
     /// The DESIGN §8 bed (default seed, dt 2e-5 s) over these arenas.
     fn build(&mut self, bed: &BenchBed) -> World<'_, S> {
-        bed.build(Storage {
-            bodies: &mut self.bodies,
-            spheres: &mut self.spheres,
-            contacts: &mut self.contacts,
-            sphere_index: &mut self.index,
-            cells: &mut self.cells,
-        })
-        .expect("bench bed set-up")
+        bed.build(self.0.storage()).expect("bench bed set-up")
     }
 }
 

@@ -22,20 +22,8 @@ fn cpu_s() -> f64 {
 }
 
 fn run<S: Scalar>(n: usize, steps: u64) {
-    let l = StorageLengths::for_spheres(n, n);
-    let mut bodies = vec![Body::<S>::default(); l.bodies];
-    let mut spheres = vec![Sphere::<S>::default(); l.spheres];
-    let mut contacts = vec![ContactSlot::<S>::default(); l.contacts];
-    let mut index = vec![0u32; l.sphere_index];
-    let mut cells = vec![0u32; l.cells];
-    let mut w = World::new(Storage {
-        bodies: &mut bodies,
-        spheres: &mut spheres,
-        contacts: &mut contacts,
-        sphere_index: &mut index,
-        cells: &mut cells,
-    })
-    .unwrap();
+    let mut arenas = arachis_core::owned::OwnedStorage::<S>::new(StorageLengths::for_spheres(n, n));
+    let mut w = World::new(arenas.storage()).unwrap();
     let pod = w
         .add_material(MaterialSpec {
             youngs_modulus_pa: 8.43e6,

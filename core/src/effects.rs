@@ -3,11 +3,11 @@
 //!
 //! | effect | parameter (off value) | scope | term | formula |
 //! |---|---|---|---|---|
-//! | viscoelastic damping | relaxation time A, s (0) | material pair | [`ViscoelasticNormal`] | Fn_v = −(4/3)E*·A·a·vn (Brilliantov et al. 1996) |
-//! | SJKR cohesion | energy density k, J/m³ (0) | material pair | [`CohesionSjkr`] | Fc = k·π·2R*α (LIGGGHTS sjkr) |
-//! | hysteretic contact | plastic fraction λ (0) | material pair | [`HystereticNormal`] | unloading to a plastic set λ·α_max (after Walton & Braun 1986) |
-//! | EPSD rolling resistance | rolling friction μr (0), damping ratio η_r | material pair | [`RollingEpsd`] | T = −k_r·θr − C_r·ω_r, \|k_r·θr\| ≤ μr·R*·Fn, k_r = 2.25·k_n·μr²R*² (Ai et al. 2011, type C) |
-//! | full JKR cohesion | work of adhesion Γ, J/m² (0) | material pair | [`CohesionJkr`] | F = 4E*a³/(3R*) − √(8πΓE*a³), δ = a²/R* − √(2πΓa/E*); pull-off 1.5πΓR* (JKR 1971) |
+//! | viscoelastic damping | relaxation time A, s (0) | material pair | [`ViscoelasticNormal`](crate::contact::ViscoelasticNormal) | Fn_v = −(4/3)E*·A·a·vn (Brilliantov et al. 1996) |
+//! | SJKR cohesion | energy density k, J/m³ (0) | material pair | [`CohesionSjkr`](crate::contact::CohesionSjkr) | Fc = k·π·2R*α (LIGGGHTS sjkr) |
+//! | hysteretic contact | plastic fraction λ (0) | material pair | [`HystereticNormal`](crate::contact::HystereticNormal) | unloading to a plastic set λ·α_max (after Walton & Braun 1986) |
+//! | EPSD rolling resistance | rolling friction μr (0), damping ratio η_r | material pair | [`RollingEpsd`](crate::contact::RollingEpsd) | T = −k_r·θr − C_r·ω_r, \|k_r·θr\| ≤ μr·R*·Fn, k_r = 2.25·k_n·μr²R*² (Ai et al. 2011, type C) |
+//! | full JKR cohesion | work of adhesion Γ, J/m² (0) | material pair | [`CohesionJkr`](crate::contact::CohesionJkr) | F = 4E*a³/(3R*) − √(8πΓE*a³), δ = a²/R* − √(2πΓa/E*); pull-off 1.5πΓR* (JKR 1971) |
 //! | air drag | drag coefficient Cd (0), air density ρ, kg/m³ | world | [`AirDrag`] | F = −½ρ·Cd·πr²·\|v\|v |
 //!
 //! The EPSD form is an alternative to (or an addition to) the CDT rolling friction of
@@ -52,7 +52,7 @@
 //! 2. **Wire it in.** Add a field to [`crate::pair::PairParams`] initialised to its default
 //!    (off) in `PairParams::new`, one `apply` line in `PairParams::evaluate` at the right stage
 //!    (before the clip if it is part of the repulsive law, after it if it may attract), and a
-//!    field to [`EffectSpec`] so [`World::set_pair_effects`] can set it. Keep the `on` guard:
+//!    field to [`EffectSpec`] so [`crate::world::World::set_pair_effects`] can set it. Keep the `on` guard:
 //!    that is what keeps the golden digests unchanged while the effect is off.
 //! 3. **Make it calibratable.** In the host, add a field to `ModelParams` and an entry to
 //!    the effect catalogue `CATALOGUE` (`host/src/diagnose/params.rs`): its name, unit, a
@@ -64,14 +64,9 @@
 //!    parameters cannot mimic: hysteresis needed the `unload` experiment, since in a rebound
 //!    it only lowers e, which the calibrated restitution absorbs.
 
-use crate::contact::{
-    CohesionJkr, CohesionSjkr, HystereticNormal, RollingEpsd, ViscoelasticNormal,
-};
 use crate::error::SetupError;
-use crate::material::{finite, MaterialId};
-use crate::num::Scalar;
+use crate::material::finite;
 pub use crate::step::air_drag::AirDrag;
-use crate::world::World;
 
 /// Air density at 20 °C and 1 atm, kg/m³ (ISO 2533 standard atmosphere at sea level, 1.204).
 pub const AIR_DENSITY_20C_KG_M3: f64 = 1.204;
@@ -95,7 +90,7 @@ pub struct EffectSpec {
     pub jkr_work_of_adhesion_j_m2: f64,
 }
 
-fn non_negative(x: f64, what: &'static str) -> Result<f64, SetupError> {
+pub(crate) fn non_negative(x: f64, what: &'static str) -> Result<f64, SetupError> {
     let x = finite(x, what)?;
     if x < 0.0 {
         return Err(SetupError::NegativeEffectParameter { what, value: x });
@@ -103,91 +98,13 @@ fn non_negative(x: f64, what: &'static str) -> Result<f64, SetupError> {
     Ok(x)
 }
 
-impl<S: Scalar> World<'_, S> {
-    /// Switch the optional effects of the (already set) pair `a`–`b` (symmetric).
-    /// Errors: unknown material, pair not yet set, negative or non-finite parameters, or a
-    /// constant outside the fixed-point range.
-    pub fn set_pair_effects(
-        &mut self,
-        a: MaterialId,
-        b: MaterialId,
-        spec: EffectSpec,
-    ) -> Result<(), SetupError> {
-        let tau = non_negative(spec.viscoelastic_time_s, "viscoelastic relaxation time")?;
-        let k = non_negative(spec.cohesion_energy_density_j_m3, "cohesion energy density")?;
-        let lambda = non_negative(spec.plastic_fraction, "plastic fraction")?;
-        if lambda >= 1.0 {
-            return Err(SetupError::NotRepresentable {
-                what: "plastic fraction (must be < 1)",
-                value: lambda,
-            });
-        }
-        let mu_r = non_negative(spec.epsd_rolling_friction, "EPSD rolling friction")?;
-        let eta_r = non_negative(spec.epsd_damping_ratio, "EPSD rolling damping ratio")?;
-        let gamma = non_negative(spec.jkr_work_of_adhesion_j_m2, "JKR work of adhesion")?;
-        if gamma > 0.0 && lambda > 0.0 {
-            return Err(SetupError::IncompatibleEffects {
-                a: "JKR cohesion",
-                b: "hysteretic normal contact",
-            });
-        }
-        let (ia, ib) = (a.0 as usize, b.0 as usize);
-        if ia >= self.materials.len() || ib >= self.materials.len() {
-            return Err(SetupError::UnknownMaterial { id: a.0.max(b.0) });
-        }
-        let mut p = self.pairs[ia][ib];
-        if !p.defined {
-            return Err(SetupError::UnknownMaterial { id: b.0 });
-        }
-        p.viscoelastic = ViscoelasticNormal::new(tau, p.e_star_mpa);
-        p.cohesion = CohesionSjkr::new(k);
-        p.hysteretic = HystereticNormal::new(lambda, p.e_star_mpa);
-        p.rolling_epsd = RollingEpsd::new(mu_r, eta_r, p.e_star_mpa);
-        p.jkr = CohesionJkr::new(gamma, p.e_star_mpa);
-        for v in [
-            p.viscoelastic.coef,
-            p.cohesion.coef,
-            p.rolling_epsd.stiffness_coef,
-            p.rolling_epsd.two_damping_ratio,
-            p.jkr.c,
-            p.jkr.adhesion_coef,
-            p.jkr.reach,
-        ] {
-            if !v.is_valid() {
-                return Err(SetupError::NotRepresentable {
-                    what: "effect constant",
-                    value: v.to_f64(),
-                });
-            }
-        }
-        self.pairs[ia][ib] = p;
-        self.pairs[ib][ia] = p;
-        Ok(())
-    }
-
-    /// Switch air drag on (Cd > 0) or off (Cd = 0) for all bodies: air density ρ (kg/m³,
-    /// e.g. [`AIR_DENSITY_20C_KG_M3`]) and drag coefficient Cd (≈ 0.47 for a sphere at
-    /// Re 10³–10⁵).
-    pub fn set_air_drag(
-        &mut self,
-        air_density_kg_m3: f64,
-        drag_coefficient: f64,
-    ) -> Result<(), SetupError> {
-        let rho = non_negative(air_density_kg_m3, "air density")?;
-        let cd = non_negative(drag_coefficient, "drag coefficient")?;
-        let d = AirDrag::<S>::new(rho, cd);
-        if !d.coef.is_valid() {
-            return Err(SetupError::NotRepresentable {
-                what: "drag constant",
-                value: 0.5 * rho * cd,
-            });
-        }
-        self.air_drag = d;
-        Ok(())
-    }
-
-    /// The air-drag settings.
-    pub fn air_drag(&self) -> &AirDrag<S> {
-        &self.air_drag
+impl EffectSpec {
+    /// Whether an effect that keeps per-contact history is on (hysteresis: α_max; EPSD
+    /// rolling: θr; JKR: the neck flag). The world then needs an effect-history arena
+    /// ([`crate::body::StorageLengths::with_effects`]).
+    pub fn needs_history(&self) -> bool {
+        self.plastic_fraction > 0.0
+            || self.epsd_rolling_friction > 0.0
+            || self.jkr_work_of_adhesion_j_m2 > 0.0
     }
 }

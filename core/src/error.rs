@@ -15,11 +15,14 @@ pub enum CapacityKind {
     Materials,
     /// The wall list (at most [`crate::wall::MAX_WALLS`]).
     Walls,
-    /// Spheres in one clump (at most [`crate::world::MAX_CLUMP_SPHERES`]).
+    /// Spheres in one clump (at most [`crate::body::clump::MAX_CLUMP_SPHERES`]).
     ClumpSpheres,
-    /// The per-sphere contact-history slots.
+    /// The neighbour-list arena (contact history).
     ContactSlots,
-    /// The sphere index scratch array (must be ≥ 4 × sphere capacity).
+    /// The history arena of the optional effects (empty, or as long as the neighbour list;
+    /// see [`crate::body::StorageLengths::with_effects`]).
+    EffectHistory,
+    /// The index scratch array (must be ≥ 4 × sphere capacity + 2).
     SphereIndex,
     /// The grid cell array (must be ≥ 2).
     Cells,
@@ -229,13 +232,13 @@ pub enum StepError {
         /// The other party.
         other: Other,
     },
-    /// A sphere owns more neighbour-list entries (contacts plus near pairs within the skin,
-    /// see [`crate::step::neighbour_list`]) than its history slots.
+    /// The neighbour list (contacts plus near pairs and wall faces within the skin, see
+    /// [`crate::step::neighbour_list`]) needs more entries than its arena holds.
     ContactCapacity {
-        /// Sphere id.
+        /// The sphere whose entries did not fit.
         sphere: u32,
-        /// Slots per sphere.
-        slots: u32,
+        /// Entries the list holds.
+        capacity: u32,
     },
     /// Two materials came into contact but no pair parameters were set for them.
     UndefinedPair {
@@ -271,10 +274,10 @@ impl fmt::Display for StepError {
                     Other::Wall(w) => write!(f, " against wall {w}"),
                 }
             }
-            StepError::ContactCapacity { sphere, slots } => write!(
+            StepError::ContactCapacity { sphere, capacity } => write!(
                 f,
-                "sphere {sphere} has more than {slots} contacts and near neighbours (within the \
-                 neighbour-list skin); give more contact slots"
+                "the neighbour list is full at sphere {sphere}: more than {capacity} contacts and \
+                 near neighbours (within the skin); give more neighbour entries per sphere"
             ),
             StepError::UndefinedPair {
                 material_a,

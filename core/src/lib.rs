@@ -82,6 +82,9 @@
 #![no_std]
 #![deny(missing_docs)]
 
+#[cfg(any(test, feature = "alloc"))]
+extern crate alloc;
+
 pub mod body;
 pub mod bond;
 pub mod contact;
@@ -90,6 +93,8 @@ pub mod effects;
 pub mod error;
 pub mod material;
 pub mod num;
+#[cfg(any(test, feature = "alloc"))]
+pub mod owned;
 pub mod pair;
 pub mod scenario;
 pub mod step;
@@ -101,13 +106,15 @@ pub mod world;
 /// The names most users need.
 pub mod prelude {
     pub use crate::body::{
-        Body, BodyId, ClumpSphere, MassProperties, Sphere, SphereSpec, Storage, StorageLengths,
+        Body, BodyForce, BodyId, ClumpSpec, ClumpSphere, MassProperties, Sphere, SphereSpec,
+        Storage, StorageLengths,
     };
-    pub use crate::contact::ContactSlot;
+    pub use crate::contact::{ContactSlot, EffectHistory, NeighbourEntry};
     pub use crate::error::{SetupError, StepError};
     pub use crate::material::{MaterialId, MaterialSpec, PoissonRange};
     pub use crate::num::{Fx, Scalar, Vec3};
     pub use crate::pair::{PairSpec, TermSwitches};
+    pub use crate::step::parts::{Parallel, Serial};
     pub use crate::wall::{WallGeometry, WallId, WallSpec};
-    pub use crate::world::{ClumpSpec, World};
+    pub use crate::world::{ThreadScratch, World};
 }

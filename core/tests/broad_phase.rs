@@ -7,8 +7,10 @@ use common::*;
 
 fn count_contacts(cells_len: usize, seed: u64) -> (u32, u32) {
     let n = 300;
-    let mut o = Owned::<Fx>::new(n, n);
-    o.cells.truncate(cells_len);
+    let mut o = Owned::<Fx>::with_lengths(StorageLengths {
+        cells: cells_len,
+        ..StorageLengths::for_spheres(n, n)
+    });
     let mut w = World::new(o.storage()).unwrap();
     let pod = w.add_material(POD).unwrap();
     w.set_pair(pod, pod, PairSpec::hertz_mindlin(0.5, 0.5, 0.1))

@@ -19,7 +19,7 @@ mod common;
 use arachis_core::bond::{Bond, BondBreak, BondStorage};
 use arachis_core::prelude::*;
 use arachis_core::scenario::{BenchBed, ClumpSlide, MovingWallPile, PullOff};
-use common::Owned;
+use common::{run_threaded, Owned};
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
@@ -267,6 +267,69 @@ fn pull_off_matches_golden_digest() {
     );
     assert_eq!(world.bonds().breaks_total(), 1);
     assert_eq!(world.bonds().bonds().len(), scenario.bond_capacity() - 1);
+}
+
+/// Thread counts the goldens must not depend on.
+const THREAD_COUNTS: [usize; 5] = [1, 2, 3, 4, 7];
+
+/// The golden digest of `scenario` as recorded in its file.
+fn golden(scenario: &str) -> Golden {
+    let text = std::fs::read_to_string(golden_path(scenario)).unwrap();
+    parse_golden(&text).unwrap()
+}
+
+/// Every golden scenario, stepped with its work split over 1, 2, 3, 4 and 7 threads, ends on
+/// the golden digest: fixed-point forces are exact integer sums, so the partition cannot
+/// change a bit (issue 16).
+#[test]
+fn golden_digests_are_identical_for_any_thread_count() {
+    for threads in THREAD_COUNTS {
+        let bed = BenchBed::design();
+        let mut arenas = Owned::<Fx>::with_lengths(bed.storage_lengths());
+        let mut world = bed.build(arenas.storage()).unwrap();
+        run_threaded(&mut world, POUR_STEPS, threads);
+        assert_eq!(
+            world.digest(),
+            golden("bench_bed_pour").digest,
+            "bed, {threads} threads"
+        );
+
+        let scenario = ClumpSlide::default();
+        let mut arenas = Owned::<Fx>::with_lengths(scenario.storage_lengths());
+        let mut world = scenario.build(arenas.storage()).unwrap();
+        run_threaded(&mut world, CLUMP_STEPS, threads);
+        assert_eq!(
+            world.digest(),
+            golden("clump_slide").digest,
+            "clumps, {threads} threads"
+        );
+
+        let scenario = MovingWallPile::default();
+        let mut arenas = Owned::<Fx>::with_lengths(scenario.storage_lengths());
+        let mut world = scenario.build(arenas.storage()).unwrap();
+        run_threaded(&mut world, BLADE_STEPS, threads);
+        assert_eq!(
+            world.digest(),
+            golden("moving_wall_pile").digest,
+            "pile, {threads} threads"
+        );
+
+        let scenario = PullOff::default();
+        let mut arenas = Owned::<Fx>::with_lengths(scenario.storage_lengths());
+        let mut bonds = vec![Bond::<Fx>::default(); scenario.bond_capacity()];
+        let mut log = vec![BondBreak::<Fx>::default(); scenario.bond_capacity()];
+        let storage = BondStorage {
+            bonds: &mut bonds,
+            log: &mut log,
+        };
+        let mut world = scenario.build(arenas.storage(), storage).unwrap();
+        run_threaded(&mut world, PULL_OFF_STEPS, threads);
+        assert_eq!(
+            world.digest(),
+            golden("pull_off").digest,
+            "pull-off, {threads} threads"
+        );
+    }
 }
 
 /// A short variant of the moving-wall scenario for the property tests below.

@@ -91,7 +91,7 @@ struct Input {
     n_bodies: u8,
     walls: [(WallIn, Real3, bool); MAX_WALLS],
     n_walls: u8,
-    /// Body/sphere capacity shortfall (0 = enough) and history slots per sphere (1–16).
+    /// Body/sphere capacity shortfall (0 = enough) and neighbour-list entries per sphere (1–16).
     capacity_short: u8,
     slots: u8,
     dt_fraction: u8,
@@ -123,7 +123,7 @@ fn run<S: Scalar>(inp: &Input) -> Vec<(bool, u64)> {
     let short = usize::from(inp.capacity_short % 4);
     let cap_b = n_bodies.saturating_sub(short).max(1);
     let cap_s = n_spheres.saturating_sub(short).max(1);
-    let mut arenas = Arenas::<S>::with_slots(cap_b, cap_s, usize::from(inp.slots % 16) + 1);
+    let mut arenas = Arenas::<S>::with_neighbours(cap_b, cap_s, usize::from(inp.slots % 16) + 1);
     let mut w = arenas.world();
     let mut trace = Vec::new();
     let Ok(a) = w.add_material(inp.materials[0].spec()) else {

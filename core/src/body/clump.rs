@@ -8,7 +8,7 @@
 //! error is O(1/resolution) on the boundary (≈0.3 % for the default 96).
 //!
 //! Callers who know the mass properties (e.g. from a CAD model) give them directly as
-//! [`MassProperties`] to [`crate::world::World::add_clump_with_mass`].
+//! [`MassProperties`] to the world's `add_clump_with_mass`.
 //!
 //! ```
 //! use arachis_core::body::{clump_mass_properties, MassSphere};
@@ -45,6 +45,20 @@ pub struct ClumpSphere {
     pub radius_m: f64,
     /// Material.
     pub material: MaterialId,
+}
+
+/// Largest number of spheres in one clump (set-up works in fixed-size stack buffers).
+pub const MAX_CLUMP_SPHERES: usize = 64;
+
+/// A clump as given by the user: its spheres (world frame at set-up) and initial motion.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClumpSpec<'s> {
+    /// The spheres (at least one, at most [`MAX_CLUMP_SPHERES`]).
+    pub spheres: &'s [ClumpSphere],
+    /// Velocity of the centre of mass, m/s.
+    pub velocity_m_s: [f64; 3],
+    /// Angular velocity, rad/s.
+    pub angular_velocity_rad_s: [f64; 3],
 }
 
 /// Rigid-body mass properties (SI units).

@@ -8,13 +8,15 @@
 
 pub mod arena;
 pub mod clump;
-pub mod kinematic;
+pub mod force;
 pub mod sphere;
 
-pub use arena::{Storage, StorageLengths, DEFAULT_SLOTS_PER_SPHERE};
+pub use arena::{Storage, StorageLengths, DEFAULT_NEIGHBOURS_PER_SPHERE};
 pub use clump::{
-    clump_mass_properties, ClumpSphere, MassProperties, MassSphere, DEFAULT_MASS_GRID,
+    clump_mass_properties, ClumpSpec, ClumpSphere, MassProperties, MassSphere, DEFAULT_MASS_GRID,
+    MAX_CLUMP_SPHERES,
 };
+pub use force::BodyForce;
 pub use sphere::{Sphere, SphereSpec};
 
 use crate::num::{Quat, Scalar, Vec3};
@@ -24,7 +26,9 @@ use crate::num::{Quat, Scalar, Vec3};
 pub struct BodyId(pub u32);
 
 /// A rigid body (internal units). Public fields are readable state; change them only through
-/// [`crate::world::World`] methods unless you know the invariants (inverse mass etc.).
+/// the world's methods unless you know the invariants (inverse mass etc.). A body whose
+/// inverse mass and inverse inertia are zero is *kinematic*: it moves only with its
+/// prescribed velocities, whatever acts on it (a clamp, a gripper).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Body<S> {
     /// Centre of mass, mm.
@@ -44,11 +48,11 @@ pub struct Body<S> {
     pub inertia: Vec3<S>,
     /// Inverse principal moments, 1/(g·mm²).
     pub inv_inertia: Vec3<S>,
-    /// Force accumulator of the current step, N.
+    /// Total force of the last step (contacts, bonds, drag and the weight m·g), N.
     pub force: Vec3<S>,
-    /// Torque accumulator of the current step (contact forces), N·mm, world frame.
+    /// Total torque of the last step (contacts and bonds), N·mm, world frame.
     pub torque: Vec3<S>,
-    /// Rolling-resistance torque magnitude of the current step, N·mm, applied along −ω̂.
+    /// Rolling-resistance torque magnitude of the last step, N·mm, applied along −ω̂.
     pub roll_torque: S,
     /// First sphere of this body in the sphere arena.
     pub first_sphere: u32,

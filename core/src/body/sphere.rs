@@ -16,10 +16,6 @@ pub struct Sphere<S> {
     pub body: u32,
     /// Material id.
     pub material: u16,
-    /// Walls this sphere may touch before the next neighbour-list rebuild, one bit per wall
-    /// id (set by the rebuild, [`crate::step::neighbour_list`]); the contact loop skips the
-    /// others. It fits in padding, so a sphere stays 64 bytes in fixed point.
-    pub near_walls: u16,
 }
 
 /// A free sphere as given by the user (SI units).

@@ -229,35 +229,27 @@ impl<'a, S: Scalar> Bonds<'a, S> {
     }
 }
 
-impl<'a, S: Scalar> crate::world::World<'a, S> {
-    /// Give the world bond storage (bond arena and break log). Allowed while the world has no
-    /// bonds; bond sets already added are kept.
-    pub fn attach_bond_storage(&mut self, storage: BondStorage<'a, S>) -> Result<(), BondError> {
-        if self.bond_table.n > 0 {
+impl<'a, S: Scalar> Bonds<'a, S> {
+    /// Take bond storage (bond arena and break log). Allowed while there are no bonds; bond
+    /// sets already added are kept.
+    pub(crate) fn attach(&mut self, storage: BondStorage<'a, S>) -> Result<(), BondError> {
+        if self.n > 0 {
             return Err(BondError::StorageInUse);
         }
-        self.bond_table.bonds = storage.bonds;
-        self.bond_table.log = storage.log;
-        self.bond_table.n_log = 0;
+        self.bonds = storage.bonds;
+        self.log = storage.log;
+        self.n_log = 0;
         Ok(())
     }
 
     /// Add a bond set; returns its id.
-    pub fn add_bond_set(&mut self, spec: &BondSetSpec) -> Result<BondSetId, BondError> {
+    pub(crate) fn add_set(&mut self, spec: &BondSetSpec) -> Result<BondSetId, BondError> {
         let p = spec.validate::<S>()?;
-        let id = self.bond_table.sets.len() as u16;
-        self.bond_table
-            .sets
-            .push(p)
-            .map_err(|_| BondError::TooMany {
-                what: "bond sets",
-                capacity: MAX_BOND_SETS as u32,
-            })?;
+        let id = self.sets.len() as u16;
+        self.sets.push(p).map_err(|_| BondError::TooMany {
+            what: "bond sets",
+            capacity: MAX_BOND_SETS as u32,
+        })?;
         Ok(BondSetId(id))
-    }
-
-    /// The bond table: live bonds, sets, break log.
-    pub fn bonds(&self) -> &Bonds<'a, S> {
-        &self.bond_table
     }
 }

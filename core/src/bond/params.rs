@@ -7,9 +7,9 @@
 
 use super::error::BondError;
 use crate::material::finite;
+use crate::num::quantise::quantise;
 use crate::num::Scalar;
 use crate::units::{LENGTH_M_TO_MM, STRESS_PA_TO_MPA};
-use crate::world::quantise;
 use core::f64::consts::PI;
 
 /// Largest number of bond sets in one world.

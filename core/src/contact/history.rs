@@ -1,19 +1,31 @@
 //! Contact history: the accumulated tangential displacement δt of each live contact, and
 //! the state of the optional terms that need one (α_max, the rolling angle θr, the JKR neck).
 //!
-//! Storage is a fixed arena of [`ContactSlot`]s, a fixed number per sphere, double-buffered
-//! (last step's slots are read, this step's are written). The sphere with the lower id owns a
-//! sphere–sphere contact; a sphere owns its wall contacts. A slot is keyed by the partner: the
-//! other sphere id, or [`WALL_PARTNER_FLAG`] | wall id << 4 | face. Slots are written in the
-//! deterministic order the pipeline visits contacts, so the history (and its digest) is
+//! History is stored beside the neighbour-list entries ([`crate::step::neighbour_list`]): a
+//! [`NeighbourEntry`] holds the partner key and δt, which every Hertz–Mindlin contact needs;
+//! the state of the optional effects lives in a parallel [`EffectHistory`] arena that only
+//! worlds with such effects provide, so the common contact loop reads 32 bytes per entry.
+//! The sphere with the lower id owns a sphere–sphere contact; a sphere owns its wall contacts.
+//! An entry is keyed by the partner: the other sphere id, or [`WALL_PARTNER_FLAG`] | wall id
+//! << 4 | face. Entries are visited in a fixed order, so the history (and its digest) is
 //! reproducible bit for bit.
+//!
+//! The contact terms see both parts joined as one [`ContactState`].
+//!
+//! ```
+//! use arachis_core::contact::{ContactState, EffectHistory, NeighbourEntry};
+//! use arachis_core::num::Fx;
+//! let entry = NeighbourEntry::<Fx>::default();
+//! let state = ContactState::join(&entry, None::<&EffectHistory<Fx>>);
+//! assert_eq!(state, ContactState::default());
+//! ```
 
 use crate::num::{Scalar, Vec3};
 
 /// Partner-key flag marking a wall contact.
 pub const WALL_PARTNER_FLAG: u32 = 0x8000_0000;
 
-/// Per-contact state carried between steps.
+/// Per-contact state carried between steps, as the contact terms see it.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ContactState<S> {
     /// Accumulated tangential displacement δt of j relative to i, mm (seed 000 eq. (5)).
@@ -29,7 +41,53 @@ pub struct ContactState<S> {
     pub jkr_attached: bool,
 }
 
-/// One history slot: partner key and state.
+/// One neighbour-list entry: partner key and tangential history.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NeighbourEntry<S> {
+    /// Partner key (sphere id, or wall key with [`WALL_PARTNER_FLAG`]), with the list's live
+    /// flag while the pair touches.
+    pub partner: u32,
+    /// Accumulated tangential displacement δt, mm (zero while the pair does not touch).
+    pub delta: Vec3<S>,
+}
+
+/// History of the optional effects of one neighbour-list entry (all zero while unused).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct EffectHistory<S> {
+    /// α_max, mm ([`ContactState::max_overlap`]).
+    pub max_overlap: S,
+    /// θr, rad ([`ContactState::roll_angle`]).
+    pub roll_angle: Vec3<S>,
+    /// The JKR neck flag ([`ContactState::jkr_attached`]).
+    pub jkr_attached: bool,
+}
+
+impl<S: Scalar> ContactState<S> {
+    /// The state of an entry and its effect history (`None`: no effects, all zero).
+    #[inline(always)]
+    pub fn join(entry: &NeighbourEntry<S>, effects: Option<&EffectHistory<S>>) -> Self {
+        let e = effects.copied().unwrap_or_default();
+        ContactState {
+            delta: entry.delta,
+            max_overlap: e.max_overlap,
+            roll_angle: e.roll_angle,
+            jkr_attached: e.jkr_attached,
+        }
+    }
+
+    /// The optional-effect part of the state.
+    #[inline(always)]
+    pub fn effects(&self) -> EffectHistory<S> {
+        EffectHistory {
+            max_overlap: self.max_overlap,
+            roll_angle: self.roll_angle,
+            jkr_attached: self.jkr_attached,
+        }
+    }
+}
+
+/// A live contact as reported by [`crate::world::World::contact_slots`]: partner key and
+/// state.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ContactSlot<S> {
     /// Partner key (sphere id, or wall key with [`WALL_PARTNER_FLAG`]).
@@ -42,15 +100,4 @@ pub struct ContactSlot<S> {
 #[inline(always)]
 pub fn wall_key(wall: u32, face: u32) -> u32 {
     WALL_PARTNER_FLAG | (wall << 4) | face
-}
-
-/// Find the state for `partner` in a slot list (linear scan; lists are short), or zero.
-#[inline(always)]
-pub fn lookup<S: Scalar>(slots: &[ContactSlot<S>], partner: u32) -> ContactState<S> {
-    for s in slots {
-        if s.partner == partner {
-            return s.state;
-        }
-    }
-    ContactState::default()
 }

@@ -53,7 +53,7 @@ pub use cohesion_jkr::CohesionJkr;
 pub use cohesion_sjkr::CohesionSjkr;
 pub use coulomb::CoulombLimit;
 pub use hertz_normal::HertzNormal;
-pub use history::{ContactSlot, ContactState, WALL_PARTNER_FLAG};
+pub use history::{ContactSlot, ContactState, EffectHistory, NeighbourEntry, WALL_PARTNER_FLAG};
 pub use hysteretic_normal::HystereticNormal;
 pub use mindlin_tangential::MindlinTangential;
 pub use normal_damping::NormalDamping;
@@ -74,7 +74,7 @@ pub fn beta_from_restitution(e: f64) -> f64 {
 }
 
 /// Geometry and relative motion of one contact, from the narrow phase.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub struct ContactKinematics<S> {
     /// Unit normal from body i towards body j (or the wall).
     pub normal: Vec3<S>,

@@ -374,10 +374,30 @@ fn rsqrt_q62(x: u64) -> u64 {
 }
 
 impl Scalar for Fx {
+    /// Raw Q32.32 values summed in 128 bits: a sum of fewer than 2^64 valid terms cannot
+    /// overflow, and integer addition is associative.
+    type Sum = i128;
     const ZERO: Self = Fx(0);
     const ONE: Self = Fx(ONE_RAW);
     const HALF: Self = Fx(ONE_RAW / 2);
     const NAME: &'static str = "fixed";
+
+    #[inline(always)]
+    fn sum_add(sum: &mut i128, x: Fx) {
+        *sum += x.0 as i128;
+    }
+    #[inline(always)]
+    fn sum_sub(sum: &mut i128, x: Fx) {
+        *sum -= x.0 as i128;
+    }
+    #[inline(always)]
+    fn sum_merge(sum: &mut i128, other: i128) {
+        *sum += other;
+    }
+    #[inline(always)]
+    fn sum_value(sum: i128) -> Fx {
+        Fx::check(sum)
+    }
 
     fn from_f64(x: f64) -> Self {
         let s = libm::round(x * ONE_RAW as f64);

@@ -4,6 +4,7 @@
 //! arithmetic only) and in `f64` (the reference path, used to *measure* quantisation error).
 
 pub mod fixed;
+pub mod quantise;
 pub mod quat;
 pub mod scalar;
 pub mod vec3;

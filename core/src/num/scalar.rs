@@ -23,8 +23,17 @@ pub trait Scalar:
     + Neg<Output = Self>
     + AddAssign
     + SubAssign
+    + Send
+    + Sync
     + 'static
 {
+    /// An accumulator for sums of many values: contact forces are summed in it, in any order
+    /// and split over any number of threads. Fixed point: the raw sum in 128 bits, which is
+    /// exact and associative, so the total does not depend on the order of the terms or on how
+    /// they were split between threads (DESIGN §5). `f64`: an `f64`, whose sum depends on the
+    /// order, as in every floating-point engine.
+    type Sum: Copy + Debug + Default + PartialEq + Send + Sync + 'static;
+
     /// Additive identity.
     const ZERO: Self;
     /// Multiplicative identity.
@@ -33,6 +42,15 @@ pub trait Scalar:
     const HALF: Self;
     /// Short name for messages and dumps ("fixed" or "f64").
     const NAME: &'static str;
+
+    /// Add a valid value to an accumulator.
+    fn sum_add(sum: &mut Self::Sum, x: Self);
+    /// Subtract a valid value from an accumulator.
+    fn sum_sub(sum: &mut Self::Sum, x: Self);
+    /// Add another accumulator.
+    fn sum_merge(sum: &mut Self::Sum, other: Self::Sum);
+    /// The accumulated value; invalid when it does not fit the scalar's range.
+    fn sum_value(sum: Self::Sum) -> Self;
 
     /// Quantise an `f64` (set-up only). Fixed point rounds to nearest; out-of-range or
     /// non-finite input gives the invalid value.
@@ -108,10 +126,28 @@ pub trait Scalar:
 }
 
 impl Scalar for f64 {
+    type Sum = f64;
     const ZERO: Self = 0.0;
     const ONE: Self = 1.0;
     const HALF: Self = 0.5;
     const NAME: &'static str = "f64";
+
+    #[inline(always)]
+    fn sum_add(sum: &mut f64, x: f64) {
+        *sum += x;
+    }
+    #[inline(always)]
+    fn sum_sub(sum: &mut f64, x: f64) {
+        *sum -= x;
+    }
+    #[inline(always)]
+    fn sum_merge(sum: &mut f64, other: f64) {
+        *sum += other;
+    }
+    #[inline(always)]
+    fn sum_value(sum: f64) -> f64 {
+        sum
+    }
 
     #[inline]
     fn from_f64(x: f64) -> Self {

@@ -175,46 +175,13 @@ impl BenchBed {
 mod tests {
     extern crate std;
     use super::*;
-    use crate::body::{Body, Sphere};
-    use crate::contact::ContactSlot;
     use crate::num::Fx;
-    use std::vec;
+    use crate::owned::OwnedStorage;
     use std::vec::Vec;
-
-    /// Owned arenas for one bed (tests may allocate; the core does not).
-    struct Arenas<S: Scalar> {
-        bodies: Vec<Body<S>>,
-        spheres: Vec<Sphere<S>>,
-        contacts: Vec<ContactSlot<S>>,
-        index: Vec<u32>,
-        cells: Vec<u32>,
-    }
-
-    impl<S: Scalar> Arenas<S> {
-        fn for_bed(bed: &BenchBed) -> Self {
-            let l = bed.storage_lengths();
-            Arenas {
-                bodies: vec![Body::default(); l.bodies],
-                spheres: vec![Sphere::default(); l.spheres],
-                contacts: vec![ContactSlot::default(); l.contacts],
-                index: vec![0; l.sphere_index],
-                cells: vec![0; l.cells],
-            }
-        }
-        fn storage(&mut self) -> Storage<'_, S> {
-            Storage {
-                bodies: &mut self.bodies,
-                spheres: &mut self.spheres,
-                contacts: &mut self.contacts,
-                sphere_index: &mut self.index,
-                cells: &mut self.cells,
-            }
-        }
-    }
 
     /// Sphere centres in mm.
     fn centres<S: Scalar>(bed: &BenchBed) -> Vec<[f64; 3]> {
-        let mut arenas = Arenas::<S>::for_bed(bed);
+        let mut arenas = OwnedStorage::<S>::new(bed.storage_lengths());
         let world = bed.build(arenas.storage()).unwrap();
         world
             .spheres()
@@ -226,7 +193,7 @@ mod tests {
     #[test]
     fn design_bed_is_inside_the_region_and_free_of_overlap() {
         let bed = BenchBed::design();
-        let mut arenas = Arenas::<Fx>::for_bed(&bed);
+        let mut arenas = OwnedStorage::<Fx>::new(bed.storage_lengths());
         let world = bed.build(arenas.storage()).unwrap();
         assert_eq!(world.spheres().len(), DESIGN_PARTICLES as usize);
         let c: Vec<[f64; 3]> = world
@@ -279,7 +246,7 @@ mod tests {
 
     #[test]
     fn impossible_counts_are_refused_before_insertion() {
-        let mut arenas = Arenas::<Fx>::for_bed(&BenchBed::with_particles(1));
+        let mut arenas = OwnedStorage::<Fx>::new(BenchBed::with_particles(1).storage_lengths());
         let zero = BenchBed::with_particles(0).build(arenas.storage());
         assert_eq!(zero.err(), Some(ScenarioError::NoParticles));
         let max = BenchBed::max_particles();
@@ -300,7 +267,7 @@ mod tests {
     )]
     fn the_largest_accepted_count_can_be_inserted() {
         let bed = BenchBed::with_particles(BenchBed::max_particles());
-        let mut arenas = Arenas::<Fx>::for_bed(&bed);
+        let mut arenas = OwnedStorage::<Fx>::new(bed.storage_lengths());
         let world = bed.build(arenas.storage()).unwrap();
         assert_eq!(world.spheres().len(), bed.particles as usize);
     }
@@ -308,7 +275,7 @@ mod tests {
     #[test]
     fn a_time_step_above_the_stable_bound_is_refused() {
         let bed = BenchBed::with_particles(3);
-        let mut arenas = Arenas::<Fx>::for_bed(&bed);
+        let mut arenas = OwnedStorage::<Fx>::new(bed.storage_lengths());
         let err = bed.build_with_timestep(arenas.storage(), 1e-3).err();
         assert!(
             matches!(
@@ -324,7 +291,7 @@ mod tests {
     #[test]
     fn spheres_are_numbered_by_layers_rows_then_x() {
         let bed = BenchBed::design();
-        let mut arenas = Arenas::<Fx>::for_bed(&bed);
+        let mut arenas = OwnedStorage::<Fx>::new(bed.storage_lengths());
         let world = bed.build(arenas.storage()).unwrap();
         let um = |x: Fx| libm::round(x.to_f64() * 1_000.0) as i64;
         let keys: Vec<(i64, i64, i64)> = world
@@ -350,14 +317,14 @@ mod tests {
     #[test]
     fn ordering_by_layers_refuses_a_world_that_has_stepped() {
         let bed = BenchBed::with_particles(20);
-        let mut arenas = Arenas::<Fx>::for_bed(&bed);
+        let mut arenas = OwnedStorage::<Fx>::new(bed.storage_lengths());
         let mut world = bed.build(arenas.storage()).unwrap();
         world.step().unwrap();
         assert_eq!(
             order_by_layers(&mut world, ORDER_LAYER_UM),
             Err(ScenarioError::NotReorderable)
         );
-        let mut arenas = Arenas::<Fx>::for_bed(&bed);
+        let mut arenas = OwnedStorage::<Fx>::new(bed.storage_lengths());
         let mut world = bed.build(arenas.storage()).unwrap();
         assert_eq!(
             order_by_layers(&mut world, 0),

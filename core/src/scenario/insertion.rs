@@ -210,6 +210,6 @@ pub fn order_by_layers<S: Scalar>(
         b.first_sphere = i as u32;
         s.body = i as u32;
     }
-    world.list_valid = false;
+    world.list.invalidate();
     Ok(())
 }

@@ -21,16 +21,8 @@
 //! use arachis_core::prelude::*;
 //! use arachis_core::scenario::BenchBed;
 //! let bed = BenchBed::with_particles(20);
-//! let len = bed.storage_lengths();
-//! let mut bodies = vec![Body::<Fx>::default(); len.bodies];
-//! let mut spheres = vec![Sphere::<Fx>::default(); len.spheres];
-//! let mut contacts = vec![ContactSlot::<Fx>::default(); len.contacts];
-//! let mut index = vec![0u32; len.sphere_index];
-//! let mut cells = vec![0u32; len.cells];
-//! let mut world = bed.build(Storage {
-//!     bodies: &mut bodies, spheres: &mut spheres, contacts: &mut contacts,
-//!     sphere_index: &mut index, cells: &mut cells,
-//! }).unwrap();
+//! let mut arenas = arachis_core::owned::OwnedStorage::<Fx>::new(bed.storage_lengths());
+//! let mut world = bed.build(arenas.storage()).unwrap();
 //! world.run(10).unwrap();
 //! assert_eq!(world.bodies().len(), 20);
 //! ```

@@ -4,12 +4,12 @@
 //! spheres overlap or shadow each other). The body's translational velocity is used
 //! (still air).
 //!
-//! Off value: Cd = 0 ([`AirDrag::on`] false), the default. Set with
-//! [`crate::world::World::set_air_drag`].
+//! Off value: Cd = 0 ([`AirDrag::on`] false), the default. The world's `set_air_drag` sets
+//! it.
 
+use crate::body::{Body, BodyForce, Sphere};
 use crate::error::{Other, Stage, StepError};
 use crate::num::{Scalar, Vec3};
-use crate::world::World;
 
 /// mm² to m²: the projected area enters the SI formula in m².
 const MM2_PER_M2: f64 = 1.0e6;
@@ -39,30 +39,35 @@ impl<S: Scalar> AirDrag<S> {
     }
 }
 
-impl<S: Scalar> World<'_, S> {
-    /// Add air drag to each body's force accumulator (after gravity).
-    pub(crate) fn apply_air_drag(&mut self) -> Result<(), StepError> {
-        let coef = self.air_drag.coef;
+impl<S: Scalar> AirDrag<S> {
+    /// Add the drag on each body (at its velocity at the start of the step) to its force sum
+    /// in `forces`; `spheres` give the projected areas.
+    pub(crate) fn apply(
+        &self,
+        bodies: &[Body<S>],
+        spheres: &[Sphere<S>],
+        forces: &mut [BodyForce<S>],
+    ) -> Result<(), StepError> {
         let scale = S::from_f64(MM2_PER_M2);
-        for (i, b) in self.bodies[..self.n_bodies as usize].iter_mut().enumerate() {
+        for (i, (b, acc)) in bodies.iter().zip(forces.iter_mut()).enumerate() {
             let first = b.first_sphere as usize;
             let mut r2 = S::ZERO;
-            for s in &self.spheres[first..first + b.sphere_count as usize] {
+            for s in &spheres[first..first + b.sphere_count as usize] {
                 r2 += s.radius * s.radius;
             }
             let v = b.velocity;
             // coef·r² first (≈ 10), then /10⁶ after multiplying by the speed terms, so the
             // small SI area factor costs no fixed-point precision.
-            let mag = coef * r2 * v.norm() / scale;
+            let mag = self.coef * r2 * v.norm() / scale;
             let f: Vec3<S> = v.scale(mag);
-            b.force -= f;
-            if !b.force.is_valid() {
+            if !f.is_valid() {
                 return Err(StepError::Overflow {
                     stage: Stage::BodyForces,
                     body: i as u32,
                     other: Other::None,
                 });
             }
+            acc.sub_force(f);
         }
         Ok(())
     }

@@ -1,7 +1,7 @@
 //! Integration: symplectic Euler (kick then drift), the leapfrog form of velocity Verlet:
-//! v ← v + (F_c/m + g)·dt, x ← x + v·dt (F_c the contact force; gravity as g itself). It
-//! needs one force evaluation per step and is symplectic, so an elastic system keeps its energy
-//! bounded (the energy test checks 0.1 % over 1e5 steps).
+//! v ← v + (F_c/m + g)·dt, x ← x + v·dt (F_c the sum of contact, bond and drag forces;
+//! gravity as g itself). It needs one force evaluation per step and is symplectic, so an
+//! elastic system keeps its energy bounded (the energy test checks 0.1 % over 1e5 steps).
 //!
 //! Rotation:
 //! - single spheres (isotropic): ω ← ω + (T/I)·dt; orientation is not integrated;
@@ -12,33 +12,78 @@
 //! applied along −ω̂ with ω̂ taken at the start of the step. Its angular impulse is capped so that
 //! the ω component along ω̂ goes to zero at most, never negative: the torque never reverses ω
 //! within a step (DESIGN §2).
+//!
+//! The stage runs in parts over disjoint body ranges ([`IntegratePart`]). Each body first
+//! gathers its force sums from every accumulator arena of the contact stage (and clears them
+//! for the next step), then moves. A kinematic body (inverse mass zero) keeps its velocity:
+//! no contact force and no gravity.
 
+use super::parts::MAX_PARTS;
+use crate::body::{Body, BodyForce, Sphere};
 use crate::error::{Other, Stage, StepError};
 use crate::num::{Scalar, Vec3};
-use crate::world::World;
+use core::ops::Range;
 
-impl<S: Scalar> World<'_, S> {
-    pub(crate) fn integrate(&mut self) -> Result<(), StepError> {
-        let dt = self.dt;
-        let nb = self.n_bodies as usize;
-        // Largest sphere displacement of this step (L1 norm ≥ Euclidean), for the neighbour list.
-        let mut max_disp = S::ZERO;
-        let g = self.gravity;
-        for (id, b) in self.bodies[..nb].iter_mut().enumerate() {
-            // (F_c/m + g)·dt, not F·(dt/m): dt/m can be a few raw units in Q32.32 (tiny dt,
-            // light body). Gravity enters as g itself, not as the rounded force m·g, which
-            // for a very light body would shift its acceleration (fuzz finding F3): the
-            // accumulator holds F_c + m·g, and subtracting the same rounded m·g that
-            // body_forces added recovers the contact force F_c exactly.
-            // A kinematic body (inverse mass zero, `body::kinematic`) keeps its velocity:
-            // no contact force and no gravity.
-            if b.inv_mass != S::ZERO {
-                let contact = b.force - g.scale(b.mass);
-                b.velocity += (contact.scale(b.inv_mass) + g).scale(dt);
+/// One part of the integration stage: a range of bodies and their spheres.
+pub(crate) struct IntegratePart<'w, S: Scalar> {
+    /// Id of the first body.
+    pub first_body: usize,
+    /// The bodies.
+    pub bodies: &'w mut [Body<S>],
+    /// Id of the first sphere of the first body.
+    pub first_sphere: usize,
+    /// The spheres of those bodies.
+    pub spheres: &'w mut [Sphere<S>],
+    /// The accumulators of these bodies: the world's and each contact part's private arena
+    /// (those that touched the range), with the body-id range each covers.
+    pub sums: heapless::Vec<(Range<usize>, &'w mut [BodyForce<S>]), { MAX_PARTS + 1 }>,
+    /// Largest sphere displacement of the step (L1 norm ≥ Euclidean), mm.
+    pub max_disp: S,
+    /// The first error, if any.
+    pub result: Result<(), StepError>,
+}
+
+impl<S: Scalar> IntegratePart<'_, S> {
+    /// Move every body of the part by one step `dt` (ms) under gravity `g` (mm/ms²).
+    pub(crate) fn run(&mut self, dt: S, g: Vec3<S>) {
+        self.result = self.integrate(dt, g);
+    }
+
+    /// The summed loads of body `id`, with every accumulator of it cleared.
+    #[inline(always)]
+    fn take_sums(&mut self, id: usize) -> BodyForce<S> {
+        let mut total = BodyForce::default();
+        for (range, arena) in self.sums.iter_mut() {
+            if range.contains(&id) {
+                let a = &mut arena[id - range.start];
+                total.merge(a);
+                *a = BodyForce::default();
             }
+        }
+        total
+    }
+
+    fn integrate(&mut self, dt: S, g: Vec3<S>) -> Result<(), StepError> {
+        let mut max_disp = S::ZERO;
+        for k in 0..self.bodies.len() {
+            let id = self.first_body + k;
+            let sums = self.take_sums(id);
+            let b = &mut self.bodies[k];
+            let force = sums.force();
+            b.torque = sums.torque();
+            b.roll_torque = sums.roll();
+            // (F_c/m + g)·dt, not F·(dt/m): dt/m can be a few raw units in Q32.32 (tiny dt,
+            // light body). Gravity enters as g itself, not as the rounded force m·g, which for
+            // a very light body would shift its acceleration (fuzz finding F3); the body
+            // reports F_c + m·g.
+            if b.inv_mass != S::ZERO {
+                b.velocity += (force.scale(b.inv_mass) + g).scale(dt);
+            }
+            b.force = force + g.scale(b.mass);
             let dx = b.velocity.scale(dt);
             b.position += dx;
             let w0 = b.angular_velocity;
+            let first = b.first_sphere as usize - self.first_sphere;
             if !b.is_clump {
                 let inv_i = b.inv_inertia.x;
                 let mut w = w0 + b.torque.scale(inv_i).scale(dt);
@@ -52,8 +97,7 @@ impl<S: Scalar> World<'_, S> {
                     }
                 }
                 b.angular_velocity = w;
-                let s = &mut self.spheres[b.first_sphere as usize];
-                s.position = b.position;
+                self.spheres[first].position = b.position;
                 max_disp = max_disp.max(dx.l1_norm());
             } else {
                 let rot = b.orientation.to_mat3();
@@ -79,7 +123,6 @@ impl<S: Scalar> World<'_, S> {
                 b.angular_velocity = w;
                 b.orientation = b.orientation.integrate(w, dt);
                 let rot = b.orientation.to_mat3();
-                let first = b.first_sphere as usize;
                 for s in self.spheres[first..first + b.sphere_count as usize].iter_mut() {
                     let p = b.position + rot.mul_vec(s.offset);
                     max_disp = max_disp.max((p - s.position).l1_norm());
@@ -96,7 +139,7 @@ impl<S: Scalar> World<'_, S> {
                 return Err(overflow(id));
             }
         }
-        self.note_drift(max_disp);
+        self.max_disp = max_disp;
         Ok(())
     }
 }

@@ -4,87 +4,483 @@
 //! Geometry (seed 000 eqs. (1)–(2), DESIGN §2): α = Ri + Rj − |rj − ri|, n̂ = (rj − ri)/|rj − ri|
 //! (n̂ = +z for exactly coincident centres, a deterministic choice; centres closer than 1 mm are
 //! normalised after an exact power-of-two scaling, so n̂ stays unit, fuzz findings F1 and F4),
-//! R* = RiRj/(Ri+Rj), m* =
-//! mimj/(mi+mj) (wall: R* = Ri, m* = mi), a = √(R*α). The contact point is
-//! c = ri + n̂(Ri − α/2); lever arms run from each body's centre of mass to c.
+//! R* = RiRj/(Ri+Rj), m* = mimj/(mi+mj) (wall: R* = Ri, m* = mi), a = √(R*α). The contact
+//! point is c = ri + n̂(Ri − α/2); lever arms run from each body's centre of mass to c.
 //!
-//! Sphere pairs come from the neighbour list ([`super::neighbour_list`]), whose entries hold
-//! the contact history, read and updated in place. One validity check per contact (force,
-//! torques, history) turns any fixed-point overflow into [`StepError::Overflow`] naming both
-//! parties.
+//! Contacts are evaluated in batches of [`BATCH`]: the scan over the neighbour list collects
+//! the touching pairs, then each stage of the evaluation (normal and overlap; lever arms and
+//! relative velocity; the two roots of the contact radius; the contact terms; the loads) runs
+//! over the whole batch before the next. The contacts of a batch are independent, so the
+//! processor overlaps their long dependency chains (the integer roots above all) instead of
+//! waiting on one contact at a time. The arithmetic of each contact is the same as one at a
+//! time.
+//!
+//! The stage runs in parts ([`ContactPart`]): each part owns a range of owner spheres (whole
+//! bodies), the neighbour-list entries of those spheres (whose history it reads and updates in
+//! place) and an accumulator arena. Loads on bodies of the part's own range go into the
+//! world's accumulators (the part holds that range exclusively); loads on the partner body of
+//! a contact that lies beyond the range go into the part's private arena, which the
+//! integrator adds in. Every contact is a function of the state at the start of the step and
+//! of its own history only, and in fixed point the sums are exact integers, so any number of
+//! parts gives the same bits. One validity check per contact (force, torques, history) turns
+//! any fixed-point overflow into [`StepError::Overflow`] naming both parties.
 
-use super::neighbour_list::{key_of, LIVE_FLAG};
-use crate::body::{Body, Sphere};
-use crate::contact::history::wall_key;
-use crate::contact::{ContactKinematics, ContactSlot, ContactState, WALL_PARTNER_FLAG};
+use super::neighbour_list::{is_wall, key_of, LIVE_FLAG};
+use super::parts::PairTable;
+use crate::body::{Body, BodyForce, Sphere};
+use crate::bond::Bond;
+use crate::contact::{ContactKinematics, ContactState, EffectHistory, NeighbourEntry};
 use crate::error::{Other, Stage, StepError};
-use crate::material::MAX_MATERIALS;
 use crate::num::{Scalar, Vec3};
 use crate::pair::PairParams;
-use crate::wall::Wall;
-use crate::world::World;
+use crate::wall::{Wall, MAX_WALLS};
+use core::ops::Range;
 
-/// The j side of a contact.
-struct Partner<S> {
-    /// Body index, or `None` for a wall.
-    body: Option<usize>,
-    /// Wall velocity (mm/ms); zero for a body.
-    wall_velocity: Vec3<S>,
-    /// Distance from j's centre to the contact point when j is a single sphere (Rj − α/2).
-    arm_len: S,
-}
-
-/// Views the contact loops need, split from the world.
-struct Ctx<'w, S: Scalar> {
-    bodies: &'w mut [Body<S>],
-    dt: S,
+/// What every part of the contact stage reads.
+pub(crate) struct Shared<'w, S: Scalar> {
+    /// Bodies at the start of the step.
+    pub bodies: &'w [Body<S>],
+    /// Spheres at the start of the step.
+    pub spheres: &'w [Sphere<S>],
+    /// Pair parameters by material.
+    pub pairs: &'w PairTable<S>,
+    /// Walls.
+    pub walls: &'w [Wall<S>],
     /// Live bonds, sorted by sphere pair: bonded pairs get no contact force.
-    bonded: &'w [crate::bond::Bond<S>],
+    pub bonded: &'w [Bond<S>],
+    /// Entry offsets of the live neighbour list, per owner sphere.
+    pub offsets: &'w [u32],
+    /// Time step, ms.
+    pub dt: S,
 }
 
-/// A contact overflowed (the caller names the parties).
-struct Overflowed;
+/// One part of the contact stage (see the module docs).
+pub(crate) struct ContactPart<'w, S: Scalar> {
+    /// Owner spheres of this part (whole bodies).
+    pub spheres: Range<usize>,
+    /// Bodies of those spheres.
+    pub bodies: Range<usize>,
+    /// The neighbour-list entries of the owner spheres.
+    pub entries: &'w mut [NeighbourEntry<S>],
+    /// Their effect history (empty when the world keeps none).
+    pub effects: &'w mut [EffectHistory<S>],
+    /// The world's accumulators of the bodies in `bodies`.
+    pub own: &'w mut [BodyForce<S>],
+    /// Accumulators (indexed by body id) for partner bodies beyond `bodies`; unused (may be
+    /// empty) when the part is the last.
+    pub beyond: &'w mut [BodyForce<S>],
+    /// Bodies written in `beyond`, as a range (empty when none).
+    pub beyond_touched: Range<usize>,
+    /// Force on each wall, N.
+    pub wall_force: [[S::Sum; 3]; MAX_WALLS],
+    /// The first error, if any.
+    pub result: Result<(), StepError>,
+}
 
-impl<S: Scalar> Ctx<'_, S> {
-    /// Evaluate one contact between a sphere of body `bi` (side i) and a partner, with its
-    /// history `state` (updated in place), and accumulate the forces. Returns the force on j (N).
-    #[allow(clippy::too_many_arguments)]
+/// Contacts evaluated together (see the module docs).
+pub const BATCH: usize = 16;
+
+impl<'w, S: Scalar> ContactPart<'w, S> {
+    /// Evaluate every entry of the part.
+    pub(crate) fn run(&mut self, sh: &Shared<'_, S>) {
+        let mut batch = Batch::new();
+        self.result = self
+            .scan(sh, &mut batch)
+            .and_then(|()| self.flush(sh, &mut batch));
+    }
+
+    /// Go through the part's entries: clear those whose pair does not touch, and batch the
+    /// touching ones.
+    fn scan(&mut self, sh: &Shared<'_, S>, batch: &mut Batch<S>) -> Result<(), StepError> {
+        let base = sh.offsets[self.spheres.start] as usize;
+        let with_effects = !self.effects.is_empty();
+        for i in self.spheres.clone() {
+            let range = sh.offsets[i] as usize - base..sh.offsets[i + 1] as usize - base;
+            for e in range {
+                let key = key_of(self.entries[e].partner);
+                let state =
+                    ContactState::join(&self.entries[e], with_effects.then(|| &self.effects[e]));
+                let found = if is_wall(key) {
+                    wall_lane(sh, i, key, state)
+                } else {
+                    sphere_lane(sh, i, key as usize, state)
+                };
+                match found {
+                    Ok(Some(mut lane)) => {
+                        lane.entry = e as u32;
+                        batch.lanes[batch.len] = lane;
+                        batch.len += 1;
+                        if batch.len == BATCH {
+                            self.flush(sh, batch)?;
+                        }
+                    }
+                    Ok(None) => self.write(e, key, &ContactState::default(), false),
+                    Err(err) => {
+                        // Contacts earlier in the list fail first, as one at a time.
+                        self.flush(sh, batch)?;
+                        return Err(err);
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Store the history and live flag of entry `e`.
     #[inline(always)]
-    fn contact(
-        &mut self,
-        pair: &PairParams<S>,
-        state: &mut ContactState<S>,
-        bi: usize,
-        j: Partner<S>,
-        p_i: Vec3<S>,
-        r_i: S,
-        n: Vec3<S>,
-        overlap: S,
-        r_star_alpha: S,
-        r_star: S,
-        m_star: S,
-    ) -> Result<Vec3<S>, Overflowed> {
-        let bod_i = &self.bodies[bi];
-        let (pos_i, vel_i, w_i, clump_i) = (
-            bod_i.position,
-            bod_i.velocity,
-            bod_i.angular_velocity,
-            bod_i.is_clump,
-        );
-        let arm_len_i = r_i - overlap * S::HALF;
-        let c = p_i + n.scale(arm_len_i);
-        let arm_i = c - pos_i;
-        let mut v_rel = j.wall_velocity - (vel_i + w_i.cross(arm_i));
+    fn write(&mut self, e: usize, key: u32, state: &ContactState<S>, live: bool) {
+        self.entries[e] = NeighbourEntry {
+            partner: if live { key | LIVE_FLAG } else { key },
+            delta: state.delta,
+        };
+        if let Some(f) = self.effects.get_mut(e) {
+            *f = state.effects();
+        }
+    }
+
+    /// Evaluate the batched contacts stage by stage, apply their loads and store their
+    /// history; empties the batch.
+    fn flush(&mut self, sh: &Shared<'_, S>, batch: &mut Batch<S>) -> Result<(), StepError> {
+        let lanes = &mut batch.lanes[..batch.len];
+        batch.len = 0;
+        for l in lanes.iter_mut() {
+            l.geometry(sh);
+        }
+        for l in lanes.iter_mut() {
+            l.kinematics(sh);
+        }
+        for l in lanes.iter_mut() {
+            l.roots(sh);
+        }
+        for l in lanes.iter_mut() {
+            l.law(sh);
+        }
+        for l in lanes.iter() {
+            let load = l.load.as_ref().ok_or(l.overflow(sh))?;
+            let key = key_of(self.entries[l.entry as usize].partner);
+            let bi = l.body_i as usize;
+            if l.is_wall() {
+                self.apply(load, bi, None);
+                let wf = &mut self.wall_force[l.wall as usize];
+                S::sum_add(&mut wf[0], load.force.x);
+                S::sum_add(&mut wf[1], load.force.y);
+                S::sum_add(&mut wf[2], load.force.z);
+            } else {
+                self.apply(load, bi, Some(l.body_j as usize));
+            }
+            let pair = l.pair(sh);
+            if pair.jkr.on && !l.state.jkr_attached {
+                // The JKR neck broke (beyond the separation): the law gave no force.
+                self.write(l.entry as usize, key, &ContactState::default(), false);
+            } else {
+                self.write(l.entry as usize, key, &l.state, pair.keeps_history());
+            }
+        }
+        Ok(())
+    }
+
+    /// The accumulator of body `b` (in the part's range, or beyond it).
+    #[inline(always)]
+    fn acc(&mut self, b: usize) -> &mut BodyForce<S> {
+        if b < self.bodies.end {
+            &mut self.own[b - self.bodies.start]
+        } else {
+            if self.beyond_touched.is_empty() {
+                self.beyond_touched = b..b + 1;
+            } else {
+                self.beyond_touched.start = self.beyond_touched.start.min(b);
+                self.beyond_touched.end = self.beyond_touched.end.max(b + 1);
+            }
+            &mut self.beyond[b]
+        }
+    }
+
+    /// Add the loads of one contact (forces on i and j, lever torques) to the accumulators.
+    #[inline(always)]
+    fn apply(&mut self, load: &Load<S>, bi: usize, bj: Option<usize>) {
+        {
+            let a = self.acc(bi);
+            a.sub_force(load.force);
+            a.add_torque(-load.torque_i);
+            a.add_roll(load.roll_i);
+        }
+        if let Some(bj) = bj {
+            let a = self.acc(bj);
+            a.add_force(load.force);
+            a.add_torque(load.torque_j);
+            a.add_roll(load.roll_j);
+        }
+    }
+}
+
+/// The touching contacts collected for one evaluation.
+struct Batch<S: Scalar> {
+    lanes: [Lane<S>; BATCH],
+    len: usize,
+}
+
+impl<S: Scalar> Batch<S> {
+    fn new() -> Self {
+        Batch {
+            lanes: [Lane::default(); BATCH],
+            len: 0,
+        }
+    }
+}
+
+/// Marks a lane whose partner is a wall (`Lane::body_j`).
+const WALL_LANE: u32 = u32::MAX;
+
+/// One touching contact in a batch: what the scan found, then each stage's results.
+#[derive(Clone, Copy, Default)]
+struct Lane<S: Scalar> {
+    /// Entry index within the part.
+    entry: u32,
+    /// Sphere i and its body.
+    sphere_i: u32,
+    body_i: u32,
+    /// Sphere j and its body, or [`WALL_LANE`] and the wall id.
+    sphere_j: u32,
+    body_j: u32,
+    wall: u32,
+    /// Materials of i and of j (or of the wall).
+    material_i: u16,
+    material_j: u16,
+    /// j − i between sphere centres (sphere lanes), mm, and its square, mm².
+    d: Vec3<S>,
+    d2: S,
+    /// Unit normal from i towards j, and the overlap α, mm.
+    normal: Vec3<S>,
+    overlap: S,
+    /// R*·α (mm²), R* (mm, zero unless a term needs it), m* (g, zero unless damping needs it).
+    r_star_alpha: S,
+    r_star: S,
+    m_star: S,
+    /// Distance from j's centre to the contact point when j is a single sphere (Rj − α/2).
+    arm_len_j: S,
+    /// Lever arms from each body's centre of mass to the contact point, mm.
+    arm_i: Vec3<S>,
+    arm_j: Vec3<S>,
+    /// Contact velocity v_j − v_i at the contact point, mm/ms (walls: the wall's velocity).
+    v_rel: Vec3<S>,
+    /// What the contact terms see.
+    kin: ContactKinematics<S>,
+    /// History, updated by the terms.
+    state: ContactState<S>,
+    /// The loads; `None` when a value overflowed.
+    load: Option<Load<S>>,
+}
+
+/// The lane of sphere–wall entry `key` of sphere `si`, if that face touches.
+#[inline(always)]
+fn wall_lane<S: Scalar>(
+    sh: &Shared<'_, S>,
+    si: usize,
+    key: u32,
+    state: ContactState<S>,
+) -> Result<Option<Lane<S>>, StepError> {
+    let wi = ((key & !crate::contact::WALL_PARTNER_FLAG) >> 4) as usize;
+    let face = key & 0xF;
+    let s = &sh.spheres[si];
+    let w = &sh.walls[wi];
+    let Some((normal, overlap)) = w.shape.contact(face, s.position, s.radius) else {
+        return Ok(None);
+    };
+    if !sh.pairs[s.material as usize][w.material as usize].defined {
+        return Err(StepError::UndefinedPair {
+            material_a: s.material,
+            material_b: w.material,
+        });
+    }
+    Ok(Some(Lane {
+        sphere_i: si as u32,
+        body_i: s.body,
+        sphere_j: WALL_LANE,
+        body_j: WALL_LANE,
+        wall: wi as u32,
+        material_i: s.material,
+        material_j: w.material,
+        normal,
+        overlap,
+        v_rel: w.velocity,
+        state,
+        ..Lane::default()
+    }))
+}
+
+/// The lane of neighbour-list pair (i < j), if it touches (and is not bonded).
+#[inline(always)]
+fn sphere_lane<S: Scalar>(
+    sh: &Shared<'_, S>,
+    i: usize,
+    j: usize,
+    state: ContactState<S>,
+) -> Result<Option<Lane<S>>, StepError> {
+    let si = &sh.spheres[i];
+    let sj = &sh.spheres[j];
+    let d = sj.position - si.position;
+    let rs = si.radius + sj.radius;
+    // An attached JKR contact holds across a neck, down to a negative overlap.
+    let reach = if state.jkr_attached {
+        rs + sh.pairs[si.material as usize][sj.material as usize]
+            .jkr
+            .reach
+    } else {
+        rs
+    };
+    // Cheap per-axis rejection before the squared distance.
+    if d.x.abs() >= reach || d.y.abs() >= reach || d.z.abs() >= reach {
+        return Ok(None);
+    }
+    let d2 = d.norm2();
+    if !d2.is_valid() {
+        return Err(StepError::Overflow {
+            stage: Stage::SphereContact,
+            body: si.body,
+            other: Other::Body(sj.body),
+        });
+    }
+    if d2 >= reach * reach {
+        return Ok(None);
+    }
+    if crate::bond::arena::is_bonded(sh.bonded, i as u32, j as u32) {
+        // A bond carries the load; the pair meets the contact law, with fresh history, only
+        // once the bond breaks.
+        return Ok(None);
+    }
+    if !sh.pairs[si.material as usize][sj.material as usize].defined {
+        return Err(StepError::UndefinedPair {
+            material_a: si.material,
+            material_b: sj.material,
+        });
+    }
+    Ok(Some(Lane {
+        sphere_i: i as u32,
+        body_i: si.body,
+        sphere_j: j as u32,
+        body_j: sj.body,
+        material_i: si.material,
+        material_j: sj.material,
+        d,
+        d2,
+        state,
+        ..Lane::default()
+    }))
+}
+
+impl<S: Scalar> Lane<S> {
+    #[inline(always)]
+    fn is_wall(&self) -> bool {
+        self.body_j == WALL_LANE
+    }
+
+    #[inline(always)]
+    fn pair<'p>(&self, sh: &Shared<'p, S>) -> &'p PairParams<S> {
+        &sh.pairs[self.material_i as usize][self.material_j as usize]
+    }
+
+    /// The error of an overflow in this contact, naming both parties.
+    fn overflow(&self, _sh: &Shared<'_, S>) -> StepError {
+        if self.is_wall() {
+            StepError::Overflow {
+                stage: Stage::WallContact,
+                body: self.body_i,
+                other: Other::Wall(self.wall),
+            }
+        } else {
+            StepError::Overflow {
+                stage: Stage::SphereContact,
+                body: self.body_i,
+                other: Other::Body(self.body_j),
+            }
+        }
+    }
+
+    /// Normal, overlap, R*·α, R* and m* (module docs; a wall lane has its normal and overlap
+    /// from the wall, R* = Ri and m* = mi).
+    #[inline(always)]
+    fn geometry(&mut self, sh: &Shared<'_, S>) {
+        let pair = self.pair(sh);
+        let si = &sh.spheres[self.sphere_i as usize];
+        if self.is_wall() {
+            self.r_star_alpha = si.radius * self.overlap;
+            self.r_star = si.radius;
+            self.m_star = sh.bodies[self.body_i as usize].mass;
+            return;
+        }
+        let sj = &sh.spheres[self.sphere_j as usize];
+        let rs = si.radius + sj.radius;
+        let (d, d2) = (self.d, self.d2);
+        // Beyond 1 mm the squared distance has ≥ 32 significant bits: dist is its correctly
+        // rounded root (the overlap needs every bit) and the normal only needs 1/dist to within
+        // a unit, which rsqrt gives without a division. Closer centres (huge overlaps)
+        // normalise d after an exact power-of-two scaling, because a rounded |d|² of a few raw
+        // units would leave the normal visibly non-unit (fuzz finding F4; F1 was the |d|² = 0
+        // case); exactly coincident centres take n = +z, a deterministic choice.
+        let (n, dist) = if d2 >= S::ONE {
+            let (root, inv_root) = d2.sqrt_rsqrt();
+            (d.scale(inv_root), root)
+        } else if let Some(u_len) = d.normalize_with_len() {
+            u_len
+        } else {
+            (Vec3::new(S::ZERO, S::ZERO, S::ONE), S::ZERO)
+        };
+        let overlap = rs - dist;
+        self.normal = n;
+        self.overlap = overlap;
+        // R* = RiRj/(Ri+Rj) and m* = mimj/(mi+mj); equal radii/masses (monodisperse beds) take
+        // the exact halving shortcut and skip a division each.
+        self.r_star_alpha = if si.radius == sj.radius {
+            si.radius * S::HALF * overlap
+        } else {
+            si.radius * sj.radius * overlap / rs
+        };
+        self.r_star = if !pair.needs_r_star() {
+            S::ZERO
+        } else if si.radius == sj.radius {
+            si.radius * S::HALF
+        } else {
+            si.radius * sj.radius / rs
+        };
+        self.m_star = if pair.needs_damping() {
+            let (bi, bj) = (
+                &sh.bodies[self.body_i as usize],
+                &sh.bodies[self.body_j as usize],
+            );
+            if bi.mass == bj.mass {
+                bi.mass * S::HALF
+            } else {
+                S::ONE / (bi.inv_mass + bj.inv_mass)
+            }
+        } else {
+            S::ZERO
+        };
+        self.arm_len_j = sj.radius - overlap * S::HALF;
+    }
+
+    /// Lever arms, contact velocity and its normal and tangential parts, levers of rolling
+    /// friction, and the EPSD relative spin and rolling inertia.
+    #[inline(always)]
+    fn kinematics(&mut self, sh: &Shared<'_, S>) {
+        let pair = self.pair(sh);
+        let si = &sh.spheres[self.sphere_i as usize];
+        let bod_i = &sh.bodies[self.body_i as usize];
+        let n = self.normal;
+        let arm_len_i = si.radius - self.overlap * S::HALF;
+        let c = si.position + n.scale(arm_len_i);
+        let arm_i = c - bod_i.position;
+        // v_rel starts as the wall's velocity (zero for a sphere partner).
+        let mut v_rel = self.v_rel - (bod_i.velocity + bod_i.angular_velocity.cross(arm_i));
         let mut arm_j = Vec3::ZERO;
         let mut lever_j = S::ZERO;
         let mut w_rel = Vec3::ZERO;
         let mut rolling_inertia = S::ZERO;
         if pair.rolling_epsd.on {
-            w_rel = w_i;
+            w_rel = bod_i.angular_velocity;
             rolling_inertia = rolling_moment(bod_i, arm_i);
         }
-        if let Some(bj) = j.body {
-            let bod_j = &self.bodies[bj];
+        if !self.is_wall() {
+            let bod_j = &sh.bodies[self.body_j as usize];
             arm_j = c - bod_j.position;
             if pair.rolling_epsd.on {
                 w_rel -= bod_j.angular_velocity;
@@ -98,77 +494,97 @@ impl<S: Scalar> Ctx<'_, S> {
                 lever_j = if bod_j.is_clump {
                     arm_j.norm()
                 } else {
-                    j.arm_len
+                    self.arm_len_j
                 };
             }
         }
         let vn = v_rel.dot(n);
-        let vt = v_rel - n.scale(vn);
-        // A JKR neck (negative overlap) has no Hertz contact radius.
-        let a = if r_star_alpha > S::ZERO {
-            r_star_alpha.sqrt()
-        } else {
-            S::ZERO
-        };
-        let sqrt_a_mstar = if pair.needs_damping() {
-            (a * m_star).sqrt()
-        } else {
-            S::ZERO
-        };
-        let lever_i = if pair.rolling.on && clump_i {
+        let lever_i = if pair.rolling.on && bod_i.is_clump {
             arm_i.norm()
         } else {
             arm_len_i
         };
-        let kin = ContactKinematics {
+        self.arm_i = arm_i;
+        self.arm_j = arm_j;
+        self.v_rel = v_rel;
+        self.kin = ContactKinematics {
             normal: n,
-            overlap,
-            contact_radius: a,
-            sqrt_a_mstar,
+            overlap: self.overlap,
+            contact_radius: S::ZERO,
+            sqrt_a_mstar: S::ZERO,
             vn,
-            vt,
-            dt: self.dt,
+            vt: v_rel - n.scale(vn),
+            dt: sh.dt,
             lever_i,
             lever_j,
-            r_star,
+            r_star: self.r_star,
             w_rel,
             rolling_inertia,
         };
+    }
+
+    /// The contact radius a = √(R*α) and √(a·m*) for the damping terms.
+    #[inline(always)]
+    fn roots(&mut self, sh: &Shared<'_, S>) {
+        // A JKR neck (negative overlap) has no Hertz contact radius.
+        let a = if self.r_star_alpha > S::ZERO {
+            self.r_star_alpha.sqrt()
+        } else {
+            S::ZERO
+        };
+        self.kin.contact_radius = a;
+        self.kin.sqrt_a_mstar = if self.pair(sh).needs_damping() {
+            (a * self.m_star).sqrt()
+        } else {
+            S::ZERO
+        };
+    }
+
+    /// The contact terms, then the force on j and the lever torques.
+    #[inline(always)]
+    fn law(&mut self, sh: &Shared<'_, S>) {
+        let pair = self.pair(sh);
         if !pair.keeps_history() {
-            *state = ContactState::default();
+            self.state = ContactState::default();
         }
-        let out = pair.evaluate(&kin, state);
-        let f = n.scale(out.normal) + out.tangential;
-        let mut ti = arm_i.cross(f);
-        let mut tj = arm_j.cross(f);
+        let out = pair.evaluate(&self.kin, &mut self.state);
+        let f = self.normal.scale(out.normal) + out.tangential;
+        let mut ti = self.arm_i.cross(f);
+        let mut tj = self.arm_j.cross(f);
         if pair.rolling_epsd.on {
             // EPSD torque on j; i receives the opposite (i's torque is −ti).
             ti += out.rolling_torque;
             tj += out.rolling_torque;
         }
-        if !(f.is_valid()
+        let valid = f.is_valid()
             & ti.is_valid()
             & tj.is_valid()
             & out.roll_i.is_valid()
             & out.roll_j.is_valid()
-            & state.delta.is_valid())
-        {
-            return Err(Overflowed);
-        }
-        {
-            let b = &mut self.bodies[bi];
-            b.force -= f;
-            b.torque -= ti;
-            b.roll_torque += out.roll_i;
-        }
-        if let Some(bj) = j.body {
-            let b = &mut self.bodies[bj];
-            b.force += f;
-            b.torque += tj;
-            b.roll_torque += out.roll_j;
-        }
-        Ok(f)
+            & self.state.delta.is_valid();
+        self.load = valid.then_some(Load {
+            force: f,
+            torque_i: ti,
+            torque_j: tj,
+            roll_i: out.roll_i,
+            roll_j: out.roll_j,
+        });
     }
+}
+
+/// The loads of one contact.
+#[derive(Clone, Copy, Debug, Default)]
+struct Load<S> {
+    /// Force on j (i receives the opposite), N.
+    force: Vec3<S>,
+    /// Torque of the contact on i is −`torque_i`, N·mm.
+    torque_i: Vec3<S>,
+    /// Torque of the contact on j, N·mm.
+    torque_j: Vec3<S>,
+    /// Rolling-resistance torque magnitude on i, N·mm.
+    roll_i: S,
+    /// Rolling-resistance torque magnitude on j, N·mm.
+    roll_j: S,
 }
 
 /// I + m·|arm|², g·mm², of one side of a rolling contact (Ai et al. 2011 eq. (14)): a
@@ -182,322 +598,4 @@ fn rolling_moment<S: Scalar>(b: &Body<S>, arm: Vec3<S>) -> S {
         b.inertia.x
     };
     i + b.mass * arm.norm2()
-}
-
-type PairTable<S> = [[PairParams<S>; MAX_MATERIALS]; MAX_MATERIALS];
-
-/// Everything split out of the world for the contact loops.
-struct Split<'w, S: Scalar> {
-    ctx: Ctx<'w, S>,
-    spheres: &'w [Sphere<S>],
-    /// The live half of the neighbour list.
-    slots: &'w mut [ContactSlot<S>],
-    /// Entry counts of the live half.
-    count: &'w mut [u32],
-    k: usize,
-    pairs: &'w PairTable<S>,
-}
-
-impl<S: Scalar> World<'_, S> {
-    fn split(&mut self) -> Split<'_, S> {
-        let cap = self.spheres.len();
-        let k = self.slots_per_sphere as usize;
-        let cur = self.current as usize;
-        let slots = &mut self.slots[cur * cap * k..(cur + 1) * cap * k];
-        let count = &mut self.index[(2 + cur) * cap..(3 + cur) * cap];
-        Split {
-            ctx: Ctx {
-                bodies: &mut self.bodies[..],
-                dt: self.dt,
-                bonded: &self.bond_table.bonds[..self.bond_table.n as usize],
-            },
-            spheres: &self.spheres[..self.n_spheres as usize],
-            slots,
-            count,
-            k,
-            pairs: &self.pairs,
-        }
-    }
-
-    /// All contacts, sphere by sphere in id order: first the sphere–sphere entries of its
-    /// neighbour list (in list order; history updated in place, live flag set or cleared),
-    /// then its wall contacts (walls in insertion order). One pass keeps each sphere's list
-    /// in cache for both.
-    pub(crate) fn contacts(&mut self) -> Result<(), StepError> {
-        let n = self.n_spheres as usize;
-        let mut walls = self.walls.clone();
-        let Split {
-            mut ctx,
-            spheres,
-            slots,
-            count,
-            k,
-            pairs,
-        } = self.split();
-        for i in 0..n {
-            let base = i * k;
-            let list = &mut slots[base..base + k];
-            let cnt = count[i] as usize;
-            // Wall entries lose their live flag here; those not hit again are removed below.
-            let mut had_wall = false;
-            for e in list[..cnt].iter_mut() {
-                if e.partner & WALL_PARTNER_FLAG != 0 {
-                    e.partner &= !LIVE_FLAG;
-                    had_wall = true;
-                    continue;
-                }
-                let j = key_of(e.partner);
-                let live = sphere_pair(&mut ctx, spheres, pairs, i, j as usize, &mut e.state)?;
-                e.partner = if live { j | LIVE_FLAG } else { j };
-            }
-            if spheres[i].near_walls != 0 || had_wall {
-                count[i] = sphere_walls(
-                    &mut ctx,
-                    &spheres[i],
-                    i,
-                    list,
-                    cnt,
-                    had_wall,
-                    &mut walls,
-                    pairs,
-                )? as u32;
-            }
-        }
-        self.walls = walls;
-        Ok(())
-    }
-}
-
-/// Wall contacts of sphere `si` with its near walls (`cnt` entries in `list`, wall entries
-/// already un-flagged when `had_wall`). Wall entries are found by key (a sphere has a
-/// handful of entries), appended when a contact starts and removed when it ends. Returns the
-/// new entry count.
-#[allow(clippy::too_many_arguments)]
-#[inline(never)]
-fn sphere_walls<S: Scalar>(
-    ctx: &mut Ctx<'_, S>,
-    s: &Sphere<S>,
-    si: usize,
-    list: &mut [ContactSlot<S>],
-    mut cnt: usize,
-    had_wall: bool,
-    walls: &mut [Wall<S>],
-    pairs: &PairTable<S>,
-) -> Result<usize, StepError> {
-    let k = list.len();
-    let bi = s.body as usize;
-    for (wi, w) in walls.iter_mut().enumerate() {
-        if s.near_walls & (1 << wi) == 0 {
-            continue;
-        }
-        let mut hits: [(u32, Vec3<S>, S); 6] = [(0, Vec3::ZERO, S::ZERO); 6];
-        let mut nh = 0usize;
-        w.shape
-            .for_each_contact(s.position, s.radius, |face, nrm, a| {
-                if nh < hits.len() {
-                    hits[nh] = (face, nrm, a);
-                    nh += 1;
-                }
-            });
-        if nh == 0 {
-            continue;
-        }
-        let pair = &pairs[s.material as usize][w.material as usize];
-        if !pair.defined {
-            return Err(StepError::UndefinedPair {
-                material_a: s.material,
-                material_b: w.material,
-            });
-        }
-        let m_star = ctx.bodies[bi].mass;
-        for &(face, nrm, a) in &hits[..nh] {
-            let partner = Partner {
-                body: None,
-                wall_velocity: w.velocity,
-                arm_len: S::ZERO,
-            };
-            let key = wall_key(wi as u32, face);
-            let mut scratch = ContactState::default();
-            let state = if pair.keeps_history() {
-                let at = match list[..cnt].iter().position(|e| key_of(e.partner) == key) {
-                    Some(at) => at,
-                    None => {
-                        if cnt >= k {
-                            return Err(StepError::ContactCapacity {
-                                sphere: si as u32,
-                                slots: k as u32,
-                            });
-                        }
-                        list[cnt] = ContactSlot {
-                            partner: key,
-                            state: ContactState::default(),
-                        };
-                        cnt += 1;
-                        cnt - 1
-                    }
-                };
-                list[at].partner = key | LIVE_FLAG;
-                &mut list[at].state
-            } else {
-                &mut scratch
-            };
-            match ctx.contact(
-                pair,
-                state,
-                bi,
-                partner,
-                s.position,
-                s.radius,
-                nrm,
-                a,
-                s.radius * a,
-                s.radius,
-                m_star,
-            ) {
-                Ok(f) => w.force += f,
-                Err(Overflowed) => {
-                    return Err(StepError::Overflow {
-                        stage: Stage::WallContact,
-                        body: bi as u32,
-                        other: Other::Wall(wi as u32),
-                    })
-                }
-            }
-        }
-    }
-    if had_wall {
-        // Drop ended wall contacts, keeping the order of the rest.
-        let mut kept = 0;
-        for e in 0..cnt {
-            let p = list[e].partner;
-            if p & WALL_PARTNER_FLAG == 0 || p & LIVE_FLAG != 0 {
-                list[kept] = list[e];
-                kept += 1;
-            }
-        }
-        cnt = kept;
-    }
-    Ok(cnt)
-}
-
-/// Evaluate one neighbour-list pair (a < b) if in contact, with its history `state`. Returns
-/// whether the pair touches and keeps history; a pair that does not touch has its history
-/// cleared.
-#[inline(never)]
-fn sphere_pair<S: Scalar>(
-    ctx: &mut Ctx<'_, S>,
-    spheres: &[Sphere<S>],
-    pairs: &PairTable<S>,
-    i: usize,
-    j: usize,
-    state: &mut ContactState<S>,
-) -> Result<bool, StepError> {
-    let si = &spheres[i];
-    let sj = &spheres[j];
-    let d = sj.position - si.position;
-    let rs = si.radius + sj.radius;
-    // An attached JKR contact holds across a neck, down to a negative overlap.
-    let reach = if state.jkr_attached {
-        rs + pairs[si.material as usize][sj.material as usize].jkr.reach
-    } else {
-        rs
-    };
-    // Cheap per-axis rejection before the squared distance.
-    if d.x.abs() >= reach || d.y.abs() >= reach || d.z.abs() >= reach {
-        *state = ContactState::default();
-        return Ok(false);
-    }
-    let d2 = d.norm2();
-    let overflow = || StepError::Overflow {
-        stage: Stage::SphereContact,
-        body: si.body,
-        other: Other::Body(sj.body),
-    };
-    if !d2.is_valid() {
-        return Err(overflow());
-    }
-    if d2 >= reach * reach {
-        *state = ContactState::default();
-        return Ok(false);
-    }
-    if crate::bond::arena::is_bonded(ctx.bonded, i as u32, j as u32) {
-        // A bond carries the load; the pair meets the contact law, with fresh history, only
-        // once the bond breaks.
-        *state = ContactState::default();
-        return Ok(false);
-    }
-    let pair = &pairs[si.material as usize][sj.material as usize];
-    if !pair.defined {
-        return Err(StepError::UndefinedPair {
-            material_a: si.material,
-            material_b: sj.material,
-        });
-    }
-    // Beyond 1 mm the squared distance has ≥ 32 significant bits: dist is its correctly
-    // rounded root (the overlap needs every bit) and the normal only needs 1/dist to within a
-    // unit, which rsqrt gives without a division. Closer centres (huge overlaps) normalise d
-    // after an exact power-of-two scaling, because a rounded |d|² of a few raw units would
-    // leave the normal visibly non-unit (fuzz finding F4; F1 was the |d|² = 0 case); exactly
-    // coincident centres take n = +z, a deterministic choice.
-    let (n, dist) = if d2 >= S::ONE {
-        let (root, inv_root) = d2.sqrt_rsqrt();
-        (d.scale(inv_root), root)
-    } else if let Some(u_len) = d.normalize_with_len() {
-        u_len
-    } else {
-        (Vec3::new(S::ZERO, S::ZERO, S::ONE), S::ZERO)
-    };
-    let overlap = rs - dist;
-    let bi = si.body as usize;
-    let bj = sj.body as usize;
-    // R* = RiRj/(Ri+Rj) and m* = mimj/(mi+mj); equal radii/masses (monodisperse beds) take
-    // the exact halving shortcut and skip a division each.
-    let r_star_alpha = if si.radius == sj.radius {
-        si.radius * S::HALF * overlap
-    } else {
-        si.radius * sj.radius * overlap / rs
-    };
-    let r_star = if !pair.needs_r_star() {
-        S::ZERO
-    } else if si.radius == sj.radius {
-        si.radius * S::HALF
-    } else {
-        si.radius * sj.radius / rs
-    };
-    let m_star = if pair.needs_damping() {
-        let (bi_, bj_) = (&ctx.bodies[bi], &ctx.bodies[bj]);
-        if bi_.mass == bj_.mass {
-            bi_.mass * S::HALF
-        } else {
-            S::ONE / (bi_.inv_mass + bj_.inv_mass)
-        }
-    } else {
-        S::ZERO
-    };
-    let partner = Partner {
-        body: Some(bj),
-        wall_velocity: Vec3::ZERO,
-        arm_len: sj.radius - overlap * S::HALF,
-    };
-    match ctx.contact(
-        pair,
-        state,
-        bi,
-        partner,
-        si.position,
-        si.radius,
-        n,
-        overlap,
-        r_star_alpha,
-        r_star,
-        m_star,
-    ) {
-        Ok(_) if pair.jkr.on && !state.jkr_attached => {
-            // The JKR neck broke (beyond the separation): no force was applied.
-            *state = ContactState::default();
-            Ok(false)
-        }
-        Ok(_) => Ok(pair.keeps_history()),
-        Err(Overflowed) => Err(overflow()),
-    }
 }

@@ -1,44 +1,48 @@
 //! Verlet neighbour list with a skin, and the contact history stored beside its entries.
 //!
-//! The list holds, per owner sphere (the lower id of a pair), every sphere whose surface was
-//! within the skin s = R_max / [`SKIN_DIVISOR`] when the list was built:
+//! The list holds, per owner sphere (the lower id of a pair), every sphere of another body
+//! whose surface was within the skin s = R_max / [`SKIN_DIVISOR`] when the list was built:
 //! |rj − ri| < Ri + Rj + s. A pair not in the list was farther apart than that, so it cannot
 //! touch until one sphere of it has moved by s/2 or both by a total of s. The integrator adds
 //! each step's largest sphere displacement (L1 norm, an upper bound on the Euclidean one) to
-//! a drift bound in the world; once 2·drift ≥ s the list is marked stale and rebuilt at the start of
-//! the next step, from the cell grid of [`super::broad_phase`] with cell edge 2·R_max + s. Adding
-//! a sphere also marks it stale. The rebuild is a pure function of the positions, so stepping
-//! stays deterministic; and since every touching pair is in the list, the set of contacts
-//! evaluated each step — and in fixed point every force — does not depend on when rebuilds
-//! happen.
+//! a drift bound; once 2·drift ≥ s the list is marked stale and rebuilt at the start of the
+//! next step, from the cell grid of [`super::broad_phase`] with cell edge 2·R_max + s. Adding
+//! a sphere or a wall also marks it stale. The rebuild is a pure function of the positions,
+//! and since every touching pair is in the list, the contacts evaluated each step, and in
+//! fixed point every force, do not depend on when rebuilds happen.
 //!
-//! Storage: the double-buffered `contacts` arena of [`crate::body::Storage`], `k` slots per
-//! sphere per half. The live half holds the list; each entry carries its contact history
-//! ([`ContactSlot`]), so the contact loop reads and updates δt in place with no search. A
-//! rebuild writes the other half, copying each surviving entry's history (one short linear
-//! search per entry, only on rebuild), then swaps halves. Entry keys carry [`LIVE_FLAG`] when
-//! the pair touched in the last step with its tangential term on: those are the "contacts with
-//! history" that [`World::contact_slots`] and the digest report; other entries have zero δt.
+//! Walls get the same treatment: a rebuild gives each sphere one entry per wall face it lies
+//! within the skin of ([`crate::wall::WallShape::faces_near`]), after its sphere entries, and
+//! the contact loop tests only those. Wall motion adds to the drift bound like sphere motion,
+//! so a face left out cannot touch the sphere before the next rebuild.
 //!
-//! Walls get the same treatment: a rebuild records in [`Sphere::near_walls`] the walls each
-//! sphere lies within the skin of ([`crate::wall::WallShape::may_touch`]), and the contact
-//! loop tests only those. Wall motion adds to the drift bound like sphere motion, so a wall
-//! left out cannot touch the sphere before the next rebuild (sphere and wall together move
-//! less than s/2). Wall contacts keep their history as entries keyed by wall and face in the
-//! same per-sphere list: appended when a contact starts, removed when it ends, carried over on
-//! rebuild.
+//! Storage: the list is packed (CSR): the entries of owner i are
+//! `offsets[i]..offsets[i + 1]`, so a crowded sphere borrows room from a lonely one and the
+//! contact loop streams through memory. Each entry carries its contact history
+//! ([`NeighbourEntry`], and [`EffectHistory`] in a parallel arena where effects are used), so
+//! the contact loop reads and updates δt in place with no search. The list is double-buffered:
+//! a rebuild writes the idle half, copying each surviving entry's history (one short linear
+//! search per entry, only on rebuild), then swaps halves. Entry keys carry [`LIVE_FLAG`] while
+//! the pair touched in the last step with a term that keeps history: those are the "contacts
+//! with history" that the world reports and the digest hashes; other entries have zero
+//! history. More entries than one half holds is [`StepError::ContactCapacity`].
 //!
-//! More entries than `k` for one owner is [`StepError::ContactCapacity`].
+//! ```
+//! use arachis_core::step::neighbour_list::{key_of, LIVE_FLAG};
+//! assert_eq!(key_of(7 | LIVE_FLAG), 7);
+//! ```
 
-use super::broad_phase::{Grid, HALF_NEIGHBOURS};
+use super::broad_phase::bin_spheres;
+use crate::body::arena::index_len;
 use crate::body::Sphere;
-use crate::contact::{ContactSlot, ContactState, WALL_PARTNER_FLAG};
-use crate::error::{Other, Stage, StepError};
+use crate::contact::history::wall_key;
+use crate::contact::{EffectHistory, NeighbourEntry, WALL_PARTNER_FLAG};
+use crate::error::{CapacityKind, Other, SetupError, Stage, StepError};
 use crate::num::{Scalar, Vec3};
-use crate::world::World;
+use crate::wall::Wall;
 
 /// Partner-key flag of an entry whose pair touched in the last step and keeps history.
-/// Sphere ids stay below 2^29 ([`World::new`] refuses larger capacities) and wall keys use
+/// Sphere ids stay below 2^29 (the world refuses larger capacities) and wall keys use
 /// [`WALL_PARTNER_FLAG`] with wall < 16, so the bit is free in every key.
 pub const LIVE_FLAG: u32 = 0x4000_0000;
 
@@ -48,205 +52,364 @@ pub const SKIN_DIVISOR: i32 = 8;
 
 /// The partner key without [`LIVE_FLAG`].
 #[inline(always)]
-pub(crate) fn key_of(partner: u32) -> u32 {
+pub fn key_of(partner: u32) -> u32 {
     partner & !LIVE_FLAG
 }
 
-// One bit per wall in `Sphere::near_walls`.
-const _: () = assert!(crate::wall::MAX_WALLS <= u16::BITS as usize);
-
-/// History of `key` in an old entry list, or zero (rebuild only).
-#[inline]
-fn carried(old: &[ContactSlot<impl Scalar>], key: u32) -> Option<usize> {
-    old.iter().position(|e| key_of(e.partner) == key)
+/// The live half of the list, read-only.
+#[derive(Clone, Copy)]
+pub struct Live<'l, S> {
+    /// Entry offsets per owner sphere (one more than the spheres listed).
+    pub offsets: &'l [u32],
+    /// The entries.
+    pub entries: &'l [NeighbourEntry<S>],
+    /// The effect history beside the entries (empty when the world keeps none).
+    pub effects: &'l [EffectHistory<S>],
 }
 
-impl<S: Scalar> World<'_, S> {
-    /// Rebuild the neighbour list if it is stale.
-    pub(crate) fn ensure_neighbour_list(&mut self) -> Result<(), StepError> {
-        if self.list_valid {
+impl<S: Scalar> Live<'_, S> {
+    /// The entry index range of owner sphere `s` (empty if `s` is not listed).
+    #[inline(always)]
+    pub fn range(&self, s: usize) -> core::ops::Range<usize> {
+        if s + 1 < self.offsets.len() {
+            self.offsets[s] as usize..self.offsets[s + 1] as usize
+        } else {
+            0..0
+        }
+    }
+}
+
+/// The live half of the list, with entries and history writable (the contact stage).
+pub struct LiveMut<'l, S> {
+    /// Entry offsets per owner sphere (one more than the spheres listed).
+    pub offsets: &'l [u32],
+    /// The entries.
+    pub entries: &'l mut [NeighbourEntry<S>],
+    /// The effect history beside the entries (empty when the world keeps none).
+    pub effects: &'l mut [EffectHistory<S>],
+}
+
+/// The neighbour list over caller-provided arenas (see the module docs).
+pub struct NeighbourList<'a, S> {
+    entries: &'a mut [NeighbourEntry<S>],
+    effects: &'a mut [EffectHistory<S>],
+    /// `[0, n)` cell of each sphere, `[n, 2n)` spheres sorted by cell, then the entry offsets
+    /// of both halves (n + 1 each); n = sphere capacity.
+    index: &'a mut [u32],
+    cells: &'a mut [u32],
+    sphere_capacity: usize,
+    /// Entries per half.
+    half: usize,
+    /// Which half is live.
+    current: usize,
+    /// Spheres the live half lists.
+    listed: usize,
+    /// `false` until the list is (re)built.
+    valid: bool,
+    /// Upper bound on any sphere's (or wall's) displacement since the last build, mm.
+    drift: S,
+    /// Skin of the current list, mm.
+    skin: S,
+}
+
+impl<'a, S: Scalar> NeighbourList<'a, S> {
+    /// An empty list over the arenas, for up to `spheres` spheres.
+    pub(crate) fn new(
+        entries: &'a mut [NeighbourEntry<S>],
+        effects: &'a mut [EffectHistory<S>],
+        index: &'a mut [u32],
+        cells: &'a mut [u32],
+        spheres: usize,
+    ) -> Result<Self, SetupError> {
+        let capacity = |kind, len: usize| SetupError::Capacity {
+            kind,
+            capacity: len.min(u32::MAX as usize) as u32,
+        };
+        if index.len() < index_len(spheres) {
+            return Err(capacity(CapacityKind::SphereIndex, index.len()));
+        }
+        if cells.len() < 2 || cells.len() > u32::MAX as usize {
+            return Err(capacity(CapacityKind::Cells, cells.len()));
+        }
+        let half = entries.len() / 2;
+        if half > u32::MAX as usize / 2 {
+            return Err(capacity(CapacityKind::ContactSlots, entries.len()));
+        }
+        if !effects.is_empty() && effects.len() < entries.len() {
+            return Err(capacity(CapacityKind::EffectHistory, effects.len()));
+        }
+        index.fill(0);
+        Ok(NeighbourList {
+            entries,
+            effects,
+            index,
+            cells,
+            sphere_capacity: spheres,
+            half,
+            current: 0,
+            listed: 0,
+            valid: false,
+            drift: S::ZERO,
+            skin: S::ZERO,
+        })
+    }
+
+    /// Whether the world keeps the history of optional effects.
+    pub fn has_effect_history(&self) -> bool {
+        !self.effects.is_empty()
+    }
+
+    /// Entries per half: the most the list can hold.
+    pub fn capacity(&self) -> usize {
+        self.half
+    }
+
+    /// Mark the list stale (a sphere or wall was added).
+    pub(crate) fn invalidate(&mut self) {
+        self.valid = false;
+    }
+
+    /// Add `disp` (mm, the largest sphere or wall displacement of a step) to the drift bound
+    /// and mark the list stale once 2·drift ≥ skin (or the bound overflowed).
+    pub(crate) fn note_drift(&mut self, disp: S) {
+        let d = self.drift + disp;
+        self.drift = d;
+        if !d.is_valid() || d.mul_int(2) >= self.skin {
+            self.valid = false;
+        }
+    }
+
+    fn offsets_at(&self, half: usize) -> core::ops::Range<usize> {
+        let n = self.sphere_capacity;
+        let start = 2 * n + half * (n + 1);
+        start..start + n + 1
+    }
+
+    fn half_range(&self, half: usize) -> core::ops::Range<usize> {
+        half * self.half..(half + 1) * self.half
+    }
+
+    /// The live half.
+    pub fn live(&self) -> Live<'_, S> {
+        let r = self.half_range(self.current);
+        Live {
+            offsets: &self.index[self.offsets_at(self.current)][..self.listed + 1],
+            entries: &self.entries[r.clone()],
+            effects: if self.effects.is_empty() {
+                &[]
+            } else {
+                &self.effects[r]
+            },
+        }
+    }
+
+    /// The live half, writable.
+    pub(crate) fn live_mut(&mut self) -> LiveMut<'_, S> {
+        let r = self.half_range(self.current);
+        let offsets = self.offsets_at(self.current);
+        LiveMut {
+            offsets: &self.index[offsets][..self.listed + 1],
+            entries: &mut self.entries[r.clone()],
+            effects: if self.effects.is_empty() {
+                &mut []
+            } else {
+                &mut self.effects[r]
+            },
+        }
+    }
+
+    /// Rebuild the list if it is stale, for `spheres` (max radius `max_radius`, mm) and
+    /// `walls`.
+    pub(crate) fn ensure(
+        &mut self,
+        spheres: &[Sphere<S>],
+        walls: &[Wall<S>],
+        max_radius: S,
+    ) -> Result<(), StepError> {
+        if self.valid {
             return Ok(());
         }
-        let skin = self.max_radius / S::ONE.mul_int(SKIN_DIVISOR);
-        let grid = self.bin_spheres(skin);
-        self.build_list(grid, skin)?;
-        self.mark_near_walls(skin);
+        let skin = max_radius / S::ONE.mul_int(SKIN_DIVISOR);
+        self.rebuild(spheres, walls, max_radius, skin)?;
         self.current ^= 1;
-        self.list_valid = true;
-        self.list_drift = S::ZERO;
-        self.list_skin = skin;
+        self.listed = spheres.len();
+        self.valid = true;
+        self.drift = S::ZERO;
+        self.skin = skin;
         Ok(())
     }
 
-    /// Record in each sphere the walls it lies within `skin` (mm) of.
-    fn mark_near_walls(&mut self, skin: S) {
-        let walls = &self.walls;
-        for s in self.spheres[..self.n_spheres as usize].iter_mut() {
-            s.near_walls = walls
-                .iter()
-                .enumerate()
-                .filter(|(_, w)| w.shape.may_touch(s.position, s.radius, skin))
-                .fold(0, |mask, (id, _)| mask | 1 << id);
-        }
-    }
-
-    /// Add `disp` (mm, the largest sphere or wall displacement of this step) to the drift
-    /// bound and mark the list stale once 2·drift ≥ skin (or the bound overflowed).
-    pub(crate) fn note_drift(&mut self, disp: S) {
-        let d = self.list_drift + disp;
-        self.list_drift = d;
-        if !d.is_valid() || d.mul_int(2) >= self.list_skin {
-            self.list_valid = false;
-        }
-    }
-
-    /// Write the new list into the idle half from the grid sweep, carrying history over.
-    fn build_list(&mut self, grid: Grid, skin: S) -> Result<(), StepError> {
-        let n = self.n_spheres as usize;
-        let cap = self.spheres.len();
-        let k = self.slots_per_sphere as usize;
-        let cur = self.current as usize;
-        let (h0, h1) = self.slots.split_at_mut(cap * k);
-        let h1 = &mut h1[..cap * k];
-        let (old_slots, new_slots) = if cur == 0 { (&*h0, h1) } else { (&*h1, h0) };
-        let (head, counts) = self.index.split_at_mut(2 * cap);
-        let (c0, c1) = counts.split_at_mut(cap);
-        let c1 = &mut c1[..cap];
-        let (old_count, new_count) = if cur == 0 { (&*c0, c1) } else { (&*c1, c0) };
-        let (cell_of, sorted) = head.split_at(cap);
-        let spheres = &self.spheres[..n];
-        let cells = &self.cells[..];
-        for c in new_count[..n].iter_mut() {
-            *c = 0;
-        }
-        if n == 0 {
-            return Ok(());
-        }
-        let mut list = Lists {
-            old_slots,
-            old_count,
-            new_slots,
-            new_count,
-            k,
+    /// Write the new list into the idle half, carrying history over.
+    fn rebuild(
+        &mut self,
+        spheres: &[Sphere<S>],
+        walls: &[Wall<S>],
+        max_radius: S,
+        skin: S,
+    ) -> Result<(), StepError> {
+        let n = spheres.len();
+        let cap = self.sphere_capacity;
+        let old = self.current;
+        let (grid_part, offsets_part) = self.index.split_at_mut(2 * cap);
+        let (cell_of, sorted) = grid_part.split_at_mut(cap);
+        let grid = bin_spheres(spheres, max_radius, skin, cell_of, sorted, self.cells);
+        let (off0, off1) = offsets_part.split_at_mut(cap + 1);
+        let (old_offsets, new_offsets) = if old == 0 {
+            (&*off0, &mut off1[..cap + 1])
+        } else {
+            (&*off1, &mut off0[..cap + 1])
         };
-        let [dx, dy, dz] = grid.dims;
-        for idx in 0..n {
-            let i = sorted[idx] as usize;
-            let c = cell_of[i];
-            let cx = c % dx;
-            let cy = (c / dx) % dy;
-            let cz = c / (dx * dy);
-            let end = cells[c as usize + 1] as usize;
-            let si = &spheres[i];
-            let (pi, ri, body_i) = (si.position, si.radius + skin, si.body);
-            // Per-axis rejection with sphere i hoisted; the full test runs for the rest.
-            let near = |sj: &Sphere<S>| -> bool {
-                let rs = ri + sj.radius;
-                sj.body != body_i
-                    && (sj.position.x - pi.x).abs() < rs
-                    && (sj.position.y - pi.y).abs() < rs
-                    && (sj.position.z - pi.z).abs() < rs
+        let (e0, e1) = self.entries.split_at_mut(self.half);
+        let (old_entries, new_entries) = if old == 0 {
+            (&*e0, &mut e1[..self.half])
+        } else {
+            (&*e1, &mut e0[..self.half])
+        };
+        let (old_effects, new_effects): (&[EffectHistory<S>], &mut [EffectHistory<S>]) =
+            if self.effects.is_empty() {
+                (&[], &mut [])
+            } else {
+                let (f0, f1) = self.effects.split_at_mut(self.half);
+                if old == 0 {
+                    (&*f0, &mut f1[..self.half])
+                } else {
+                    (&*f1, &mut f0[..self.half])
+                }
             };
-            for &j in &sorted[idx + 1..end] {
-                if near(&spheres[j as usize]) {
-                    list.consider(spheres, i, j as usize, skin)?;
-                }
-            }
-            for off in HALF_NEIGHBOURS.iter() {
-                let nx = cx as i64 + off[0] as i64;
-                let ny = cy as i64 + off[1] as i64;
-                let nz = cz as i64 + off[2] as i64;
-                if nx < 0
-                    || ny < 0
-                    || nz < 0
-                    || nx >= dx as i64
-                    || ny >= dy as i64
-                    || nz >= dz as i64
-                {
+        let mut out = Writer {
+            old: Live {
+                offsets: &old_offsets[..self.listed + 1],
+                entries: old_entries,
+                effects: old_effects,
+            },
+            entries: new_entries,
+            effects: new_effects,
+            at: 0,
+        };
+        let cells = &*self.cells;
+        new_offsets[0] = 0;
+        for i in 0..n {
+            let si = &spheres[i];
+            let reach_i = si.radius + skin;
+            let [cx, cy, cz] = grid.coords(cell_of[i]);
+            // The 3×3×3 neighbourhood as nine rows along x: the three cells of a row are
+            // consecutive, so their spheres are one run of `sorted`.
+            let x_lo = cx.saturating_sub(1);
+            let x_hi = (cx + 1).min(grid.dims[0] - 1);
+            for (dy, dz) in NEIGHBOUR_ROWS {
+                let (Some(y), Some(z)) =
+                    (step_in(cy, dy, grid.dims[1]), step_in(cz, dz, grid.dims[2]))
+                else {
                     continue;
-                }
-                let nc = ((nz as u32 * dy + ny as u32) * dx + nx as u32) as usize;
-                let (s, e) = (cells[nc] as usize, cells[nc + 1] as usize);
-                for &j in &sorted[s..e] {
-                    if near(&spheres[j as usize]) {
-                        list.consider(spheres, i, j as usize, skin)?;
+                };
+                let row = (z * grid.dims[1] + y) * grid.dims[0];
+                let run = cells[(row + x_lo) as usize] as usize
+                    ..cells[(row + x_hi) as usize + 1] as usize;
+                for &j in &sorted[run] {
+                    // The owner keeps only partners above it.
+                    if j as usize <= i {
+                        continue;
+                    }
+                    let sj = &spheres[j as usize];
+                    let rs = reach_i + sj.radius;
+                    let d: Vec3<S> = sj.position - si.position;
+                    if sj.body == si.body || d.x.abs() >= rs || d.y.abs() >= rs || d.z.abs() >= rs {
+                        continue;
+                    }
+                    let d2 = d.norm2();
+                    if !d2.is_valid() {
+                        return Err(StepError::Overflow {
+                            stage: Stage::SphereContact,
+                            body: si.body,
+                            other: Other::Body(sj.body),
+                        });
+                    }
+                    if d2 < rs * rs {
+                        out.push(i, j)?;
                     }
                 }
             }
-        }
-        // Live wall contacts keep their entries (and history).
-        for (s, &cnt) in old_count[..n].iter().enumerate() {
-            let base = s * k;
-            for e in 0..cnt as usize {
-                let slot = list.old_slots[base + e];
-                if slot.partner & WALL_PARTNER_FLAG != 0 {
-                    list.push(s, slot)?;
+            for (w, wall) in walls.iter().enumerate() {
+                let mut faces = wall.shape.faces_near(si.position, si.radius, skin);
+                while faces != 0 {
+                    let face = faces.trailing_zeros();
+                    faces &= faces - 1;
+                    out.push(i, wall_key(w as u32, face))?;
                 }
             }
+            new_offsets[i + 1] = out.at as u32;
         }
         Ok(())
     }
 }
 
-/// Old and new halves of the list during a rebuild.
-struct Lists<'a, S> {
-    old_slots: &'a [ContactSlot<S>],
-    old_count: &'a [u32],
-    new_slots: &'a mut [ContactSlot<S>],
-    new_count: &'a mut [u32],
-    k: usize,
+/// The idle half being written during a rebuild, with the live half to carry history from.
+struct Writer<'w, S> {
+    old: Live<'w, S>,
+    entries: &'w mut [NeighbourEntry<S>],
+    effects: &'w mut [EffectHistory<S>],
+    at: usize,
 }
 
-impl<S: Scalar> Lists<'_, S> {
-    /// Append `slot` to sphere `owner`'s new list.
+impl<S: Scalar> Writer<'_, S> {
+    /// Append the entry `key` of owner `owner`, with the history it had in the old list.
     #[inline]
-    fn push(&mut self, owner: usize, slot: ContactSlot<S>) -> Result<(), StepError> {
-        let cnt = self.new_count[owner] as usize;
-        if cnt >= self.k {
+    fn push(&mut self, owner: usize, key: u32) -> Result<(), StepError> {
+        if self.at >= self.entries.len() {
             return Err(StepError::ContactCapacity {
                 sphere: owner as u32,
-                slots: self.k as u32,
+                capacity: self.entries.len() as u32,
             });
         }
-        self.new_slots[owner * self.k + cnt] = slot;
-        self.new_count[owner] = cnt as u32 + 1;
+        let old = self.old.range(owner);
+        let carried = self.old.entries[old.clone()]
+            .iter()
+            .position(|e| key_of(e.partner) == key)
+            .map(|k| old.start + k);
+        let (entry, effects) = match carried {
+            Some(k) => (
+                self.old.entries[k],
+                self.old.effects.get(k).copied().unwrap_or_default(),
+            ),
+            None => (
+                NeighbourEntry {
+                    partner: key,
+                    delta: Vec3::ZERO,
+                },
+                EffectHistory::default(),
+            ),
+        };
+        self.entries[self.at] = entry;
+        if let Some(e) = self.effects.get_mut(self.at) {
+            *e = effects;
+        }
+        self.at += 1;
         Ok(())
     }
+}
 
-    /// Enter the pair (a, b) if their surfaces are within `skin`; the lower id owns it.
-    #[inline(never)]
-    fn consider(
-        &mut self,
-        spheres: &[Sphere<S>],
-        a: usize,
-        b: usize,
-        skin: S,
-    ) -> Result<(), StepError> {
-        let (i, j) = if a < b { (a, b) } else { (b, a) };
-        let (si, sj) = (&spheres[i], &spheres[j]);
-        let d: Vec3<S> = sj.position - si.position;
-        let reach = si.radius + sj.radius + skin;
-        let d2 = d.norm2();
-        if !d2.is_valid() {
-            return Err(StepError::Overflow {
-                stage: Stage::SphereContact,
-                body: si.body,
-                other: Other::Body(sj.body),
-            });
-        }
-        if d2 >= reach * reach {
-            return Ok(());
-        }
-        let key = j as u32;
-        let base = i * self.k;
-        let old = &self.old_slots[base..base + self.old_count[i] as usize];
-        let slot = match carried(old, key) {
-            Some(e) => old[e],
-            None => ContactSlot {
-                partner: key,
-                state: ContactState::default(),
-            },
-        };
-        self.push(i, slot)
-    }
+/// The (y, z) cell offsets of the nine rows of a 3×3×3 neighbourhood.
+const NEIGHBOUR_ROWS: [(i32, i32); 9] = [
+    (-1, -1),
+    (0, -1),
+    (1, -1),
+    (-1, 0),
+    (0, 0),
+    (1, 0),
+    (-1, 1),
+    (0, 1),
+    (1, 1),
+];
+
+/// Cell coordinate `c + d` if it lies in `0..dim`.
+#[inline(always)]
+fn step_in(c: u32, d: i32, dim: u32) -> Option<u32> {
+    let v = c as i64 + d as i64;
+    (0..dim as i64).contains(&v).then_some(v as u32)
+}
+
+/// `true` for a wall entry's key.
+#[inline(always)]
+pub fn is_wall(key: u32) -> bool {
+    key & WALL_PARTNER_FLAG != 0
 }

@@ -3,6 +3,9 @@
 
 use crate::num::{Scalar, Vec3};
 
+/// Number of faces of a box.
+pub const BOX_FACES: u32 = 6;
+
 /// Axis-aligned box between `min` and `max`, mm.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AaBox<S> {
@@ -13,37 +16,46 @@ pub struct AaBox<S> {
 }
 
 impl<S: Scalar> AaBox<S> {
-    /// See [`super::WallShape::for_each_contact`]. Up to six faces.
+    /// Distance from `c` to face `face` (0..6) on the inner side, mm.
     #[inline(always)]
-    pub fn for_each_contact(&self, c: Vec3<S>, r: S, mut hit: impl FnMut(u32, Vec3<S>, S)) {
-        let (o, z) = (S::ONE, S::ZERO);
-        let lo = [c.x - self.min.x, c.y - self.min.y, c.z - self.min.z];
-        let hi = [self.max.x - c.x, self.max.y - c.y, self.max.z - c.z];
-        let axes = [Vec3::new(o, z, z), Vec3::new(z, o, z), Vec3::new(z, z, o)];
-        for k in 0..3 {
-            let a = r - lo[k];
-            if a > S::ZERO {
-                hit(2 * k as u32, -axes[k], a);
-            }
-            let b = r - hi[k];
-            if b > S::ZERO {
-                hit(2 * k as u32 + 1, axes[k], b);
-            }
+    fn gap(&self, face: u32, c: Vec3<S>) -> S {
+        let k = (face / 2) as usize;
+        let (cc, lo, hi) = [
+            (c.x, self.min.x, self.max.x),
+            (c.y, self.min.y, self.max.y),
+            (c.z, self.min.z, self.max.z),
+        ][k];
+        if face % 2 == 0 {
+            cc - lo
+        } else {
+            hi - cc
         }
     }
 
-    /// See [`super::WallShape::may_touch`]: some face is nearer than `r + margin`.
+    /// See [`super::WallShape::contact`]. Faces 0–5.
+    #[inline(always)]
+    pub fn contact(&self, face: u32, c: Vec3<S>, r: S) -> Option<(Vec3<S>, S)> {
+        let overlap = r - self.gap(face, c);
+        if overlap <= S::ZERO {
+            return None;
+        }
+        let (o, z) = (S::ONE, S::ZERO);
+        let axis =
+            [Vec3::new(o, z, z), Vec3::new(z, o, z), Vec3::new(z, z, o)][(face / 2) as usize];
+        Some((if face % 2 == 0 { -axis } else { axis }, overlap))
+    }
+
+    /// See [`super::WallShape::faces_near`]: the faces nearer than `r + margin`.
     #[inline]
-    pub fn may_touch(&self, c: Vec3<S>, r: S, margin: S) -> bool {
+    pub fn faces_near(&self, c: Vec3<S>, r: S, margin: S) -> u8 {
         let reach = r + margin;
-        let gaps = [
-            c.x - self.min.x,
-            c.y - self.min.y,
-            c.z - self.min.z,
-            self.max.x - c.x,
-            self.max.y - c.y,
-            self.max.z - c.z,
-        ];
-        gaps.iter().any(|&g| !(g.is_valid() && g >= reach))
+        (0..BOX_FACES).fold(0, |mask, f| {
+            let g = self.gap(f, c);
+            if g.is_valid() && g >= reach {
+                mask
+            } else {
+                mask | 1 << f
+            }
+        })
     }
 }

@@ -29,43 +29,41 @@ impl<S: Scalar> Cylinder<S> {
         (h, rel - self.axis.scale(h))
     }
 
-    /// See [`super::WallShape::for_each_contact`]. One face (0).
+    /// See [`super::WallShape::contact`]. One face (0).
     #[inline(always)]
-    pub fn for_each_contact(&self, c: Vec3<S>, r: S, mut hit: impl FnMut(u32, Vec3<S>, S)) {
+    pub fn contact(&self, c: Vec3<S>, r: S) -> Option<(Vec3<S>, S)> {
         let (h, radial) = self.axial_radial(c);
         if self.finite && (h < S::ZERO || h > self.length) {
-            return;
+            return None;
         }
         let d2 = radial.norm2();
         let inner = self.radius - r;
         // Cheap rejection without a square root: fully inside the contact-free core.
         if inner > S::ZERO && d2 < inner * inner {
-            return;
+            return None;
         }
         let d = d2.sqrt();
         if d == S::ZERO {
             // On the axis: no defined radial direction (only possible when R ≥ Rc).
-            return;
+            return None;
         }
         let overlap = r + d - self.radius;
-        if overlap > S::ZERO {
-            hit(0, radial.scale(S::ONE / d), overlap);
-        }
+        (overlap > S::ZERO).then(|| (radial.scale(S::ONE / d), overlap))
     }
 
-    /// See [`super::WallShape::may_touch`]: the ends are widened by `margin` too, since a
+    /// See [`super::WallShape::faces_near`]: the ends are widened by `margin` too, since a
     /// finite cylinder's reach depends on where the centre lies along the axis.
     #[inline]
-    pub fn may_touch(&self, c: Vec3<S>, r: S, margin: S) -> bool {
+    pub fn faces_near(&self, c: Vec3<S>, r: S, margin: S) -> u8 {
         let (h, radial) = self.axial_radial(c);
         if !h.is_valid() {
-            return true;
+            return 1;
         }
         if self.finite && (h < -margin || h > self.length + margin) {
-            return false;
+            return 0;
         }
         let d2 = radial.norm2();
         let inner = self.radius - r - margin;
-        !(d2.is_valid() && inner > S::ZERO && d2 < inner * inner)
+        u8::from(!(d2.is_valid() && inner > S::ZERO && d2 < inner * inner))
     }
 }

@@ -3,8 +3,8 @@
 //! at a prescribed velocity (mm/ms = m/s), e.g. the repose test lifts a cylinder at 0.05 m/s.
 //!
 //! Seam for triangle meshes: [`WallShape`] is `#[non_exhaustive]`; a mesh wall becomes a new
-//! variant whose contact routine reports (face, normal, overlap) hits through the same callback
-//! as the shapes here ([`WallShape::for_each_contact`]), so the contact law does not change.
+//! variant whose contact routine reports (normal, overlap) per face ([`WallShape::contact`])
+//! like the shapes here, so the contact law does not change.
 //!
 //! A wall has infinite mass: m* = m_i and R* = R_i (DESIGN §2).
 
@@ -23,6 +23,9 @@ use crate::units::{LENGTH_M_TO_MM, VELOCITY_M_S_TO_MM_MS};
 
 /// Largest number of walls in one world.
 pub const MAX_WALLS: usize = 16;
+
+/// Largest number of faces of one wall (a box has six; the wall key keeps four bits).
+pub const MAX_FACES: u32 = aabox::BOX_FACES;
 
 /// Index of a wall in the world.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -54,29 +57,54 @@ pub struct Wall<S> {
 }
 
 impl<S: Scalar> WallShape<S> {
-    /// Call `hit(face, normal, overlap)` for each face the sphere (centre `c`, radius `r`, mm)
-    /// overlaps; `normal` is the unit vector from the sphere centre towards the wall, `overlap`
-    /// is α > 0 in mm. Faces are reported in a fixed order.
+    /// The contact of a sphere (centre `c`, radius `r`, mm) with face `face` of this wall, if
+    /// they overlap: the unit normal from the sphere centre towards the wall and the overlap
+    /// α > 0, mm. Planes and cylinders have one face (0), boxes six ([`aabox`]).
     #[inline(always)]
-    pub fn for_each_contact(&self, c: Vec3<S>, r: S, hit: impl FnMut(u32, Vec3<S>, S)) {
+    pub fn contact(&self, face: u32, c: Vec3<S>, r: S) -> Option<(Vec3<S>, S)> {
         match self {
-            WallShape::Plane(p) => p.for_each_contact(c, r, hit),
-            WallShape::Cylinder(y) => y.for_each_contact(c, r, hit),
-            WallShape::AaBox(b) => b.for_each_contact(c, r, hit),
+            WallShape::Plane(p) => p.contact(c, r),
+            WallShape::Cylinder(y) => y.contact(c, r),
+            WallShape::AaBox(b) => b.contact(face, c, r),
         }
     }
 
-    /// Whether a sphere (centre `c`, radius `r`, mm) lies within `margin` (mm) of touching
-    /// this wall. Conservative: `false` only when no contact is possible until the sphere and
-    /// the wall have moved by `margin` between them; any overflow answers `true`. The
-    /// neighbour list uses it to skip far walls ([`crate::step::neighbour_list`]).
+    /// Number of faces: 1 for planes and cylinders, 6 for boxes.
+    pub fn face_count(&self) -> u32 {
+        match self {
+            WallShape::Plane(_) | WallShape::Cylinder(_) => 1,
+            WallShape::AaBox(_) => aabox::BOX_FACES,
+        }
+    }
+
+    /// Call `hit(face, normal, overlap)` for each face the sphere (centre `c`, radius `r`, mm)
+    /// overlaps ([`WallShape::contact`]), in face order.
+    pub fn for_each_contact(&self, c: Vec3<S>, r: S, mut hit: impl FnMut(u32, Vec3<S>, S)) {
+        for face in 0..self.face_count() {
+            if let Some((n, a)) = self.contact(face, c, r) {
+                hit(face, n, a);
+            }
+        }
+    }
+
+    /// The faces (one bit each) that a sphere (centre `c`, radius `r`, mm) lies within
+    /// `margin` (mm) of touching. Conservative: a face is left out only when no contact with
+    /// it is possible until the sphere and the wall have moved by `margin` between them; any
+    /// overflow counts as near. The neighbour list keeps an entry for each near face
+    /// ([`crate::step::neighbour_list`]).
+    #[inline]
+    pub fn faces_near(&self, c: Vec3<S>, r: S, margin: S) -> u8 {
+        match self {
+            WallShape::Plane(p) => p.faces_near(c, r, margin),
+            WallShape::Cylinder(y) => y.faces_near(c, r, margin),
+            WallShape::AaBox(b) => b.faces_near(c, r, margin),
+        }
+    }
+
+    /// Whether a sphere lies within `margin` of touching any face ([`WallShape::faces_near`]).
     #[inline]
     pub fn may_touch(&self, c: Vec3<S>, r: S, margin: S) -> bool {
-        match self {
-            WallShape::Plane(p) => p.may_touch(c, r, margin),
-            WallShape::Cylinder(y) => y.may_touch(c, r, margin),
-            WallShape::AaBox(b) => b.may_touch(c, r, margin),
-        }
+        self.faces_near(c, r, margin) != 0
     }
 
     /// Translate by `d`, mm.
@@ -188,7 +216,7 @@ pub(crate) fn q3<S: Scalar>(
     let v = fin3(v, what)?;
     let mut out = [S::ZERO; 3];
     for k in 0..3 {
-        out[k] = crate::world::quantise_coordinate(v[k] * scale, what)?;
+        out[k] = crate::num::quantise::quantise_coordinate(v[k] * scale, what)?;
     }
     Ok(Vec3::new(out[0], out[1], out[2]))
 }
@@ -237,8 +265,11 @@ impl WallSpec {
                 WallShape::Cylinder(Cylinder {
                     base: q3(base_m, LENGTH_M_TO_MM, "cylinder base")?,
                     axis: q3(unit(axis, "cylinder axis")?, 1.0, "cylinder axis")?,
-                    radius: crate::world::quantise(r * LENGTH_M_TO_MM, "cylinder radius")?,
-                    length: crate::world::quantise(len * LENGTH_M_TO_MM, "cylinder length")?,
+                    radius: crate::num::quantise::quantise(r * LENGTH_M_TO_MM, "cylinder radius")?,
+                    length: crate::num::quantise::quantise(
+                        len * LENGTH_M_TO_MM,
+                        "cylinder length",
+                    )?,
                     finite: fin,
                 })
             }

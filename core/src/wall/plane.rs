@@ -12,20 +12,18 @@ pub struct Plane<S> {
 }
 
 impl<S: Scalar> Plane<S> {
-    /// See [`super::WallShape::for_each_contact`]. One face (0).
+    /// See [`super::WallShape::contact`]. One face (0).
     #[inline(always)]
-    pub fn for_each_contact(&self, c: Vec3<S>, r: S, mut hit: impl FnMut(u32, Vec3<S>, S)) {
+    pub fn contact(&self, c: Vec3<S>, r: S) -> Option<(Vec3<S>, S)> {
         let dist = (c - self.point).dot(self.normal);
         let overlap = r - dist;
-        if overlap > S::ZERO {
-            hit(0, -self.normal, overlap);
-        }
+        (overlap > S::ZERO).then(|| (-self.normal, overlap))
     }
 
-    /// See [`super::WallShape::may_touch`].
+    /// See [`super::WallShape::faces_near`].
     #[inline]
-    pub fn may_touch(&self, c: Vec3<S>, r: S, margin: S) -> bool {
+    pub fn faces_near(&self, c: Vec3<S>, r: S, margin: S) -> u8 {
         let dist = (c - self.point).dot(self.normal);
-        !(dist.is_valid() && dist >= r + margin)
+        u8::from(!(dist.is_valid() && dist >= r + margin))
     }
 }

@@ -1,38 +1,22 @@
 //! Test support: owned storage and small world builders.
 #![allow(dead_code)]
 
+use arachis_core::owned::OwnedStorage;
 use arachis_core::prelude::*;
 
-/// Owned arenas for a world (the core never allocates; tests use `Vec`s).
-pub struct Owned<S: Scalar> {
-    pub bodies: Vec<Body<S>>,
-    pub spheres: Vec<Sphere<S>>,
-    pub contacts: Vec<ContactSlot<S>>,
-    pub index: Vec<u32>,
-    pub cells: Vec<u32>,
-}
+/// Owned arenas for a world (the core never allocates; tests use its `alloc` feature).
+pub struct Owned<S: Scalar>(pub OwnedStorage<S>);
 
 impl<S: Scalar> Owned<S> {
+    /// Arenas for `bodies` bodies and `spheres` spheres, with room for effect history.
     pub fn new(bodies: usize, spheres: usize) -> Self {
-        Self::with_lengths(StorageLengths::for_spheres(bodies, spheres))
+        Self::with_lengths(StorageLengths::for_spheres(bodies, spheres).with_effects())
     }
     pub fn with_lengths(l: StorageLengths) -> Self {
-        Owned {
-            bodies: vec![Body::default(); l.bodies],
-            spheres: vec![Sphere::default(); l.spheres],
-            contacts: vec![ContactSlot::default(); l.contacts],
-            index: vec![0; l.sphere_index],
-            cells: vec![0; l.cells],
-        }
+        Owned(OwnedStorage::new(l))
     }
     pub fn storage(&mut self) -> Storage<'_, S> {
-        Storage {
-            bodies: &mut self.bodies,
-            spheres: &mut self.spheres,
-            contacts: &mut self.contacts,
-            sphere_index: &mut self.index,
-            cells: &mut self.cells,
-        }
+        self.0.storage()
     }
 }
 
@@ -223,5 +207,32 @@ pub fn restitution_reference(m_star: f64, r_star: f64, e_star: f64, e: f64, v: f
         let fac = (0.9 * err.powf(-0.2)).clamp(0.2, 5.0);
         h *= fac;
         h = h.min(t_c * 1e-3);
+    }
+}
+
+/// A runner that gives every part of a stage its own OS thread (scoped threads, spawned per
+/// stage): the plainest real concurrency, for the thread-count tests.
+pub struct Threads(pub usize);
+
+impl Parallel for Threads {
+    fn parts(&self) -> usize {
+        self.0
+    }
+    fn for_each<J: Send>(&self, jobs: &mut [J], f: &(dyn Fn(&mut J) + Sync)) {
+        std::thread::scope(|s| {
+            for j in jobs.iter_mut() {
+                s.spawn(move || f(j));
+            }
+        });
+    }
+}
+
+/// Run `steps` steps of `w` split into `threads` parts on as many threads.
+pub fn run_threaded<S: Scalar>(w: &mut World<'_, S>, steps: u64, threads: usize) {
+    let bodies = w.bodies().len();
+    let mut scratch = arachis_core::owned::OwnedThreadScratch::<S>::new(threads, bodies);
+    let mut arenas = scratch.arenas();
+    for _ in 0..steps {
+        w.step_with(&Threads(threads), &mut arenas).unwrap();
     }
 }

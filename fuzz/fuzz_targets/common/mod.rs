@@ -3,6 +3,7 @@
 
 #![allow(dead_code)] // each target uses a subset
 
+use arachis_core::owned::OwnedStorage;
 use arachis_core::prelude::*;
 use arbitrary::Arbitrary;
 
@@ -100,44 +101,26 @@ impl PairIn {
 }
 
 /// Owned arenas for a small world.
-pub struct Arenas<S> {
-    bodies: Vec<Body<S>>,
-    spheres: Vec<Sphere<S>>,
-    contacts: Vec<ContactSlot<S>>,
-    index: Vec<u32>,
-    cells: Vec<u32>,
-}
+pub struct Arenas<S: Scalar>(OwnedStorage<S>);
 
 impl<S: Scalar> Arenas<S> {
-    /// Arenas for `bodies` bodies and `spheres` spheres, default slot and cell counts.
+    /// Arenas for `bodies` bodies and `spheres` spheres, default list and cell counts, with
+    /// room for effect history.
     pub fn new(bodies: usize, spheres: usize) -> Self {
-        let l = StorageLengths::for_spheres(bodies, spheres);
-        Arenas {
-            bodies: vec![Body::default(); l.bodies],
-            spheres: vec![Sphere::default(); l.spheres],
-            contacts: vec![ContactSlot::default(); l.contacts],
-            index: vec![0; l.sphere_index],
-            cells: vec![0; l.cells],
-        }
+        Self::with_neighbours(bodies, spheres, arachis_core::body::DEFAULT_NEIGHBOURS_PER_SPHERE)
     }
 
-    /// Arenas with `slots` contact-history slots per sphere.
-    pub fn with_slots(bodies: usize, spheres: usize, slots: usize) -> Self {
-        let mut a = Self::new(bodies, spheres);
-        a.contacts = vec![ContactSlot::default(); 2 * spheres * slots];
-        a
+    /// Arenas with `per_sphere` neighbour-list entries per sphere.
+    pub fn with_neighbours(bodies: usize, spheres: usize, per_sphere: usize) -> Self {
+        let l = StorageLengths::for_spheres(bodies, spheres)
+            .with_neighbours_per_sphere(per_sphere)
+            .with_effects();
+        Arenas(OwnedStorage::new(l))
     }
 
     /// An empty world over these arenas.
     pub fn world(&mut self) -> World<'_, S> {
-        World::new(Storage {
-            bodies: &mut self.bodies,
-            spheres: &mut self.spheres,
-            contacts: &mut self.contacts,
-            sphere_index: &mut self.index,
-            cells: &mut self.cells,
-        })
-        .expect("storage built from StorageLengths is accepted")
+        World::new(self.0.storage()).expect("storage built from StorageLengths is accepted")
     }
 }
 

@@ -153,7 +153,7 @@ fn e_star_pa(p: &ModelParams) -> f64 {
 
 /// Storage for the one-sphere worlds of these experiments.
 fn one_sphere_arena() -> OwnedStorage<Fx> {
-    OwnedStorage::new(StorageLengths::for_spheres(1, 1))
+    OwnedStorage::new(StorageLengths::for_spheres(1, 1).with_effects())
 }
 
 /// Core errors (set-up or step) as `anyhow` errors with their message.

@@ -1,77 +1,22 @@
-//! [`World`]: the simulation state over caller-provided storage, and its set-up API.
-//!
-//! Set-up takes SI values and validates them (typed [`SetupError`]s); stepping lives in
-//! [`crate::step`]. A world is generic over the [`Scalar`]: `World<Fx>` is the deterministic
-//! fixed-point production path, `World<f64>` the reference.
-//!
-//! ```
-//! use arachis_core::prelude::*;
-//! let len = StorageLengths::for_spheres(1, 1);
-//! let mut bodies = vec![Body::<Fx>::default(); len.bodies];
-//! let mut spheres = vec![Sphere::<Fx>::default(); len.spheres];
-//! let mut contacts = vec![ContactSlot::<Fx>::default(); len.contacts];
-//! let mut index = vec![0u32; len.sphere_index];
-//! let mut cells = vec![0u32; len.cells];
-//! let mut w = World::new(Storage {
-//!     bodies: &mut bodies, spheres: &mut spheres, contacts: &mut contacts,
-//!     sphere_index: &mut index, cells: &mut cells,
-//! }).unwrap();
-//! let pod = w.add_material(MaterialSpec { youngs_modulus_pa: 8.43e6, poisson: 0.386, density_kg_m3: 582.0 }).unwrap();
-//! let steel = w.add_material(MaterialSpec { youngs_modulus_pa: 2.05e11, poisson: 0.3, density_kg_m3: 7865.0 }).unwrap();
-//! w.set_pair(pod, steel, PairSpec::hertz_mindlin(0.339, 0.589, 0.159)).unwrap();
-//! w.set_gravity_m_s2([0.0, 0.0, -9.81]).unwrap();
-//! w.add_wall(WallSpec::fixed(WallGeometry::Plane { point_m: [0.0; 3], normal: [0.0, 0.0, 1.0] }, steel)).unwrap();
-//! w.add_sphere(SphereSpec::at_rest(pod, 0.004, [0.0, 0.0, 0.01])).unwrap();
-//! w.set_timestep_s(2e-5).unwrap();
-//! for _ in 0..100 { w.step().unwrap(); }
-//! assert!(w.body(BodyId(0)).position.z.to_f64() < 10.0); // fell (mm)
-//! let _digest: u64 = w.digest();
-//! ```
+//! The world's set-up API: materials and pairs, gravity, bodies (spheres and clumps), walls,
+//! velocities and the time step. Every input is SI, validated and quantised here; a refused
+//! input changes nothing.
 
+use super::World;
+use crate::body::clump::{ClumpSpec, MAX_CLUMP_SPHERES};
 use crate::body::{
-    clump_mass_properties, Body, BodyId, ClumpSphere, MassProperties, MassSphere, Sphere,
-    SphereSpec, Storage, DEFAULT_MASS_GRID,
+    clump_mass_properties, Body, BodyId, MassProperties, MassSphere, Sphere, SphereSpec,
+    DEFAULT_MASS_GRID,
 };
-use crate::contact::ContactSlot;
 use crate::error::{CapacityKind, SetupError};
 use crate::material::{finite, Material, MaterialId, MaterialSpec, PoissonRange, MAX_MATERIALS};
+use crate::num::quantise::quantise;
 use crate::num::{Quat, Scalar, Vec3};
 use crate::pair::{PairParams, PairSpec};
-use crate::timestep::{max_stable_dt_s, rayleigh_time_s};
+use crate::timestep::rayleigh_time_s;
 use crate::units::*;
-use crate::wall::{q3, Wall, WallId, WallSpec, MAX_WALLS};
+use crate::wall::{q3, WallId, WallSpec, MAX_WALLS};
 use core::f64::consts::PI;
-
-/// Largest magnitude accepted at set-up in internal units: inside the Q32.32 range (±2.1e9)
-/// with headroom for the sums the stepper forms.
-pub const MAX_INTERNAL_MAGNITUDE: f64 = 1.0e9;
-
-/// Largest number of spheres in one clump (set-up works in fixed-size stack buffers).
-pub const MAX_CLUMP_SPHERES: usize = 64;
-
-/// Quantise a set-up value (internal units) into `S`, refusing non-finite values, values
-/// beyond [`MAX_INTERNAL_MAGNITUDE`], and non-zero values that would round to zero.
-pub fn quantise<S: Scalar>(x: f64, what: &'static str) -> Result<S, SetupError> {
-    let q = quantise_coordinate(x, what)?;
-    if x != 0.0 && q == S::ZERO {
-        return Err(SetupError::NotRepresentable { what, value: x });
-    }
-    Ok(q)
-}
-
-/// Quantise a coordinate-like value (position, velocity, offset): like [`quantise`] but
-/// values below the resolution may round to zero.
-pub fn quantise_coordinate<S: Scalar>(x: f64, what: &'static str) -> Result<S, SetupError> {
-    let x = finite(x, what)?;
-    if x.abs() > MAX_INTERNAL_MAGNITUDE {
-        return Err(SetupError::NotRepresentable { what, value: x });
-    }
-    let q = S::from_f64(x);
-    if !q.is_valid() {
-        return Err(SetupError::NotRepresentable { what, value: x });
-    }
-    Ok(q)
-}
 
 /// Quantise a vector whose components must not round to zero (inertia and its inverse).
 fn q3_nonzero<S: Scalar>(v: [f64; 3], what: &'static str) -> Result<Vec3<S>, SetupError> {
@@ -82,115 +27,7 @@ fn q3_nonzero<S: Scalar>(v: [f64; 3], what: &'static str) -> Result<Vec3<S>, Set
     ))
 }
 
-/// A clump as given by the user: its spheres (world frame at set-up) and initial motion.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ClumpSpec<'s> {
-    /// The spheres (at least one).
-    pub spheres: &'s [ClumpSphere],
-    /// Velocity of the centre of mass, m/s.
-    pub velocity_m_s: [f64; 3],
-    /// Angular velocity, rad/s.
-    pub angular_velocity_rad_s: [f64; 3],
-}
-
-/// The simulation state. See the module docs for an example.
-pub struct World<'a, S: Scalar> {
-    pub(crate) bodies: &'a mut [Body<S>],
-    pub(crate) n_bodies: u32,
-    pub(crate) spheres: &'a mut [Sphere<S>],
-    pub(crate) n_spheres: u32,
-    pub(crate) slots: &'a mut [ContactSlot<S>],
-    pub(crate) slots_per_sphere: u32,
-    /// Which half of `slots` (and of the count region of `index`) holds the live history.
-    pub(crate) current: u32,
-    pub(crate) index: &'a mut [u32],
-    pub(crate) cells: &'a mut [u32],
-    pub(crate) walls: heapless::Vec<Wall<S>, MAX_WALLS>,
-    pub(crate) materials: heapless::Vec<Material, MAX_MATERIALS>,
-    pub(crate) pairs: [[PairParams<S>; MAX_MATERIALS]; MAX_MATERIALS],
-    pub(crate) gravity: Vec3<S>,
-    pub(crate) dt: S,
-    pub(crate) dt_s: f64,
-    pub(crate) time: S,
-    pub(crate) steps: u64,
-    pub(crate) max_radius: S,
-    pub(crate) min_rayleigh_s: f64,
-    /// `false` until the neighbour list is (re)built ([`crate::step::neighbour_list`]).
-    pub(crate) list_valid: bool,
-    /// Upper bound on any sphere's displacement since the last list build, mm.
-    pub(crate) list_drift: S,
-    /// Skin of the current neighbour list, mm.
-    pub(crate) list_skin: S,
-    /// Bonded-particle model state ([`crate::bond`]).
-    pub(crate) bond_table: crate::bond::Bonds<'a, S>,
-    /// Optional air drag (off by default; [`crate::effects`]).
-    pub(crate) air_drag: crate::step::air_drag::AirDrag<S>,
-}
-
-impl<'a, S: Scalar> World<'a, S> {
-    /// Build an empty world over `storage`.
-    pub fn new(storage: Storage<'a, S>) -> Result<Self, SetupError> {
-        let ns = storage.spheres.len();
-        if ns > u32::MAX as usize / 8 || storage.bodies.len() > u32::MAX as usize / 2 {
-            return Err(SetupError::Capacity {
-                kind: CapacityKind::Spheres,
-                capacity: u32::MAX / 8,
-            });
-        }
-        if storage.sphere_index.len() < 4 * ns {
-            return Err(SetupError::Capacity {
-                kind: CapacityKind::SphereIndex,
-                capacity: storage.sphere_index.len() as u32,
-            });
-        }
-        if storage.cells.len() < 2 || storage.cells.len() > u32::MAX as usize {
-            return Err(SetupError::Capacity {
-                kind: CapacityKind::Cells,
-                capacity: storage.cells.len().min(u32::MAX as usize) as u32,
-            });
-        }
-        let k = if ns == 0 {
-            1
-        } else {
-            storage.contacts.len() / (2 * ns)
-        };
-        if ns > 0 && (k == 0 || k > u16::MAX as usize) {
-            return Err(SetupError::Capacity {
-                kind: CapacityKind::ContactSlots,
-                capacity: storage.contacts.len() as u32,
-            });
-        }
-        for c in storage.sphere_index.iter_mut() {
-            *c = 0;
-        }
-        Ok(World {
-            bodies: storage.bodies,
-            n_bodies: 0,
-            spheres: storage.spheres,
-            n_spheres: 0,
-            slots: storage.contacts,
-            slots_per_sphere: k as u32,
-            current: 0,
-            index: storage.sphere_index,
-            cells: storage.cells,
-            walls: heapless::Vec::new(),
-            materials: heapless::Vec::new(),
-            pairs: [[PairParams::default(); MAX_MATERIALS]; MAX_MATERIALS],
-            gravity: Vec3::ZERO,
-            dt: S::ZERO,
-            dt_s: 0.0,
-            time: S::ZERO,
-            steps: 0,
-            max_radius: S::ZERO,
-            min_rayleigh_s: f64::INFINITY,
-            list_valid: false,
-            list_drift: S::ZERO,
-            list_skin: S::ZERO,
-            bond_table: crate::bond::Bonds::empty(),
-            air_drag: crate::step::air_drag::AirDrag::default(),
-        })
-    }
-
+impl<S: Scalar> World<'_, S> {
     /// Add a material; returns its id. ν must lie in (−1, 0.5).
     pub fn add_material(&mut self, spec: MaterialSpec) -> Result<MaterialId, SetupError> {
         self.add_material_with(spec, PoissonRange::Isotropic)
@@ -290,7 +127,7 @@ impl<'a, S: Scalar> World<'a, S> {
 
     fn note_sphere(&mut self, radius_m: f64, mat: &Material) {
         // A new sphere is in no neighbour list yet.
-        self.list_valid = false;
+        self.list.invalidate();
         let r = S::from_f64(radius_m * LENGTH_M_TO_MM);
         if r > self.max_radius {
             self.max_radius = r;
@@ -341,7 +178,6 @@ impl<'a, S: Scalar> World<'a, S> {
             offset: Vec3::ZERO,
             body: id,
             material: spec.material.0,
-            near_walls: 0,
         };
         self.bodies[id as usize] = body;
         self.n_spheres += 1;
@@ -453,7 +289,6 @@ impl<'a, S: Scalar> World<'a, S> {
                     offset: q3(off, LENGTH_M_TO_MM, "clump sphere offset")?,
                     body: id,
                     material: s.material.0,
-                    near_walls: 0,
                 })
                 .map_err(|_| SetupError::Capacity {
                     kind: CapacityKind::ClumpSpheres,
@@ -503,8 +338,8 @@ impl<'a, S: Scalar> World<'a, S> {
             kind: CapacityKind::Walls,
             capacity: MAX_WALLS as u32,
         })?;
-        // The new wall is in no sphere's near-wall set yet.
-        self.list_valid = false;
+        // The new wall has no entries in the neighbour list yet.
+        self.list.invalidate();
         Ok(WallId(id))
     }
 
@@ -557,102 +392,21 @@ impl<'a, S: Scalar> World<'a, S> {
         Ok(())
     }
 
-    /// Largest accepted time step, s (∞ while the world has no sphere).
-    pub fn max_timestep_s(&self) -> f64 {
-        max_stable_dt_s(self.min_rayleigh_s)
-    }
-
-    /// Smallest Rayleigh time over all spheres, s.
-    pub fn min_rayleigh_time_s(&self) -> f64 {
-        self.min_rayleigh_s
-    }
-
-    /// Time step, s.
-    pub fn timestep_s(&self) -> f64 {
-        self.dt_s
-    }
-
-    /// Simulated time, s.
-    pub fn time_s(&self) -> f64 {
-        self.time.to_f64() / TIME_S_TO_MS
-    }
-
-    /// Number of completed steps.
-    pub fn step_count(&self) -> u64 {
-        self.steps
-    }
-
-    /// Bodies in insertion order.
-    pub fn bodies(&self) -> &[Body<S>] {
-        &self.bodies[..self.n_bodies as usize]
-    }
-
-    /// One body (panics if `id` is out of range, like slice indexing).
-    pub fn body(&self, id: BodyId) -> &Body<S> {
-        &self.bodies()[id.0 as usize]
-    }
-
-    /// Spheres in insertion order.
-    pub fn spheres(&self) -> &[Sphere<S>] {
-        &self.spheres[..self.n_spheres as usize]
-    }
-
-    /// Walls in insertion order.
-    pub fn walls(&self) -> &[Wall<S>] {
-        &self.walls
-    }
-
-    /// Materials in insertion order.
-    pub fn materials(&self) -> &[Material] {
-        &self.materials
-    }
-
-    /// Gravity, mm/ms².
-    pub fn gravity(&self) -> Vec3<S> {
-        self.gravity
-    }
-
-    /// Contact-history slots per sphere.
-    pub fn slots_per_sphere(&self) -> u32 {
-        self.slots_per_sphere
-    }
-
-    /// All neighbour-list entries of sphere `s`, live or not (empty if out of range).
-    fn list_entries(&self, s: u32) -> &[ContactSlot<S>] {
-        if s >= self.n_spheres {
-            return &[];
+    /// Make body `id` kinematic: it then moves only with its prescribed velocity and angular
+    /// velocity, whatever forces act on it (a clamp, a gripper pulling at constant speed).
+    /// Its inverse mass and inverse inertia become zero, so the integrator's kick vanishes
+    /// exactly, and gravity, which the integrator adds as an acceleration, is skipped too.
+    /// Its force and torque still show what the rest of the world exerts on it (gravity
+    /// included), which is how a test reads the reaction of a clamp or the pull of a gripper.
+    /// Keep its velocities with [`World::set_body_velocity`]. Irreversible.
+    pub fn set_body_kinematic(&mut self, id: BodyId) -> Result<(), SetupError> {
+        if id.0 >= self.n_bodies {
+            return Err(SetupError::UnknownId { id: id.0 });
         }
-        let n = self.spheres.len();
-        let k = self.slots_per_sphere as usize;
-        let cnt = self.index[(2 + self.current as usize) * n + s as usize] as usize;
-        let base = self.current as usize * n * k + s as usize * k;
-        &self.slots[base..base + cnt]
-    }
-
-    /// The live contact-history slots of sphere `s` (contacts of the last step that carry
-    /// tangential history), in list order; empty if out of range. Neighbour-list entries of
-    /// pairs that are not touching are skipped.
-    pub fn contact_slots(&self, s: u32) -> impl Iterator<Item = ContactSlot<S>> + '_ {
-        use crate::step::neighbour_list::LIVE_FLAG;
-        self.list_entries(s)
-            .iter()
-            .filter(|c| c.partner & LIVE_FLAG != 0)
-            .map(|c| ContactSlot {
-                partner: c.partner & !LIVE_FLAG,
-                state: c.state,
-            })
-    }
-
-    /// Number of live contacts (sphere–sphere and sphere–wall) with stored history.
-    pub fn contact_count(&self) -> u32 {
-        (0..self.n_spheres)
-            .map(|s| self.contact_slots(s).count() as u32)
-            .sum()
-    }
-
-    /// Total kinetic energy (translational + rotational), mJ.
-    pub fn kinetic_energy_mj(&self) -> f64 {
-        self.bodies().iter().map(|b| b.kinetic_energy_mj()).sum()
+        let b = &mut self.bodies[id.0 as usize];
+        b.inv_mass = S::ZERO;
+        b.inv_inertia = Vec3::ZERO;
+        Ok(())
     }
 }
 

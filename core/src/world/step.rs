@@ -1,0 +1,317 @@
+//! The step: the stages of [`crate::step`] in order, with the contact and integration stages
+//! split into parts that a [`Parallel`] runner may run on several threads.
+
+use super::World;
+use crate::body::BodyForce;
+use crate::error::StepError;
+use crate::num::{Scalar, Vec3};
+use crate::step::bonds::{bond_forces, Clock};
+use crate::step::integration::IntegratePart;
+use crate::step::narrow_phase::{ContactPart, Shared};
+use crate::step::parts::{split_ranges, Parallel, Serial, MAX_PARTS};
+use crate::step::wall_motion::move_walls;
+use crate::wall::MAX_WALLS;
+use core::ops::Range;
+
+/// The force sums one extra thread of a threaded step writes for bodies outside its own
+/// range: as long as the body arena, all zero between steps (the step leaves it so).
+pub type ThreadScratch<'s, S> = &'s mut [BodyForce<S>];
+
+type Ranges = heapless::Vec<Range<usize>, MAX_PARTS>;
+
+impl<S: Scalar> World<'_, S> {
+    /// Advance the world by one time step on the calling thread.
+    ///
+    /// Errors: [`StepError::NoTimeStep`], [`StepError::TimeStepTooLarge`] (checked before any
+    /// state changes), [`StepError::Overflow`] naming the stage and bodies,
+    /// [`StepError::ContactCapacity`], [`StepError::UndefinedPair`]. After an error other than
+    /// the time-step ones the state is partly advanced.
+    pub fn step(&mut self) -> Result<(), StepError> {
+        self.step_with(&Serial, &mut [])
+    }
+
+    /// Run `n` steps on the calling thread, stopping at the first error.
+    pub fn run(&mut self, n: u64) -> Result<(), StepError> {
+        for _ in 0..n {
+            self.step()?;
+        }
+        Ok(())
+    }
+
+    /// Advance the world by one time step, with the contact and integration stages split into
+    /// `par.parts()` parts (at most one per usable `scratch` arena, each
+    /// [`ThreadScratch`]) that `par` may run at the same time. In fixed point the result is
+    /// the same bits for any number of parts. Errors as [`World::step`].
+    pub fn step_with<P: Parallel>(
+        &mut self,
+        par: &P,
+        scratch: &mut [ThreadScratch<'_, S>],
+    ) -> Result<(), StepError> {
+        if self.dt_s == 0.0 {
+            return Err(StepError::NoTimeStep);
+        }
+        let max_s = self.max_timestep_s();
+        if self.dt_s > max_s {
+            return Err(StepError::TimeStepTooLarge {
+                dt_s: self.dt_s,
+                max_s,
+            });
+        }
+        let result = self.stages(par, scratch);
+        if result.is_err() {
+            // Leave no partial sums behind for the next step.
+            let nb = self.n_bodies as usize;
+            self.forces[..nb].fill(BodyForce::default());
+            for arena in scratch.iter_mut() {
+                let len = arena.len().min(nb);
+                arena[..len].fill(BodyForce::default());
+            }
+        }
+        result
+    }
+
+    fn stages<P: Parallel>(
+        &mut self,
+        par: &P,
+        scratch: &mut [ThreadScratch<'_, S>],
+    ) -> Result<(), StepError> {
+        let nb = self.n_bodies as usize;
+        let ns = self.n_spheres as usize;
+        if self.air_drag.on {
+            self.air_drag.apply(
+                &self.bodies[..nb],
+                &self.spheres[..ns],
+                &mut self.forces[..nb],
+            )?;
+        }
+        self.list
+            .ensure(&self.spheres[..ns], &self.walls, self.max_radius)?;
+        // One part per usable scratch arena, when the runner has threads for them.
+        let usable = scratch.iter().filter(|a| a.len() >= nb).count();
+        let parts = if par.parts() > 1 {
+            par.parts().min(usable)
+        } else {
+            1
+        }
+        .max(1);
+        let touched = self.contact_stage(par, parts, scratch)?;
+        let clock = Clock {
+            step: self.steps,
+            time: self.time,
+            dt: self.dt,
+            dt_s: self.dt_s,
+        };
+        bond_forces(
+            &mut self.bond_table,
+            &self.spheres[..ns],
+            &self.bodies[..nb],
+            &mut self.forces[..nb],
+            &clock,
+        )?;
+        let max_disp = self.integration_stage(par, parts, scratch, &touched)?;
+        self.list.note_drift(max_disp);
+        let wall_disp = move_walls(&mut self.walls, self.dt)?;
+        if wall_disp != S::ZERO {
+            self.list.note_drift(wall_disp);
+        }
+        self.time += self.dt;
+        self.steps += 1;
+        Ok(())
+    }
+
+    /// The first sphere of body `b` (the sphere count for `b` = the body count).
+    fn first_sphere_of(&self, b: usize) -> usize {
+        if b < self.n_bodies as usize {
+            self.bodies[b].first_sphere as usize
+        } else {
+            self.n_spheres as usize
+        }
+    }
+
+    /// The contact stage in `parts` parts over body ranges of about equal entry counts.
+    /// Returns, per part, the bodies beyond its range whose sums it wrote in its scratch
+    /// arena.
+    fn contact_stage<P: Parallel>(
+        &mut self,
+        par: &P,
+        parts: usize,
+        scratch: &mut [ThreadScratch<'_, S>],
+    ) -> Result<Ranges, StepError> {
+        let nb = self.n_bodies as usize;
+        let ns = self.n_spheres as usize;
+        let mut ranges = Ranges::new();
+        {
+            let offsets = self.list.live().offsets;
+            split_ranges(
+                nb,
+                parts,
+                |b| offsets[self.first_sphere_of(b)] as u64,
+                |_| true,
+                &mut ranges,
+            );
+        }
+        let sphere_ranges: heapless::Vec<Range<usize>, MAX_PARTS> = ranges
+            .iter()
+            .map(|r| self.first_sphere_of(r.start)..self.first_sphere_of(r.end))
+            .collect();
+        let live = self.list.live_mut();
+        let shared = Shared {
+            bodies: &self.bodies[..nb],
+            spheres: &self.spheres[..ns],
+            pairs: &self.pairs,
+            walls: &self.walls,
+            bonded: self.bond_table.bonds(),
+            offsets: live.offsets,
+            dt: self.dt,
+        };
+        let mut jobs: heapless::Vec<ContactPart<'_, S>, MAX_PARTS> = heapless::Vec::new();
+        {
+            let mut entries = &mut live.entries[..];
+            let mut effects = &mut live.effects[..];
+            let mut own = &mut self.forces[..nb];
+            let mut consumed_entries = 0usize;
+            let mut usable = scratch.iter_mut().filter(|a| a.len() >= nb);
+            for (bodies, spheres) in ranges.iter().zip(sphere_ranges.iter()) {
+                let end = live.offsets[spheres.end] as usize;
+                let (e, rest) = core::mem::take(&mut entries).split_at_mut(end - consumed_entries);
+                entries = rest;
+                let (f, rest_f) = if effects.is_empty() {
+                    (&mut [][..], &mut [][..])
+                } else {
+                    core::mem::take(&mut effects).split_at_mut(end - consumed_entries)
+                };
+                effects = rest_f;
+                consumed_entries = end;
+                let (o, rest_o) = core::mem::take(&mut own).split_at_mut(bodies.len());
+                own = rest_o;
+                let beyond: &mut [BodyForce<S>] = if parts > 1 {
+                    usable.next().map(|a| &mut a[..nb]).unwrap_or(&mut [])
+                } else {
+                    &mut []
+                };
+                let _ = jobs.push(ContactPart {
+                    spheres: spheres.clone(),
+                    bodies: bodies.clone(),
+                    entries: e,
+                    effects: f,
+                    own: o,
+                    beyond,
+                    beyond_touched: 0..0,
+                    wall_force: [[S::Sum::default(); 3]; MAX_WALLS],
+                    result: Ok(()),
+                });
+            }
+        }
+        par.for_each(&mut jobs, &|part: &mut ContactPart<'_, S>| {
+            part.run(&shared)
+        });
+        let mut touched = Ranges::new();
+        let mut wall_sums = [[S::Sum::default(); 3]; MAX_WALLS];
+        for part in jobs.iter() {
+            part.result?;
+            let _ = touched.push(part.beyond_touched.clone());
+            for (sum, f) in wall_sums.iter_mut().zip(part.wall_force.iter()) {
+                for k in 0..3 {
+                    S::sum_merge(&mut sum[k], f[k]);
+                }
+            }
+        }
+        drop(jobs);
+        for (w, sum) in self.walls.iter_mut().zip(wall_sums.iter()) {
+            w.force = Vec3::new(
+                S::sum_value(sum[0]),
+                S::sum_value(sum[1]),
+                S::sum_value(sum[2]),
+            );
+        }
+        Ok(touched)
+    }
+
+    /// The integration stage in `parts` parts over body ranges of about equal sphere counts;
+    /// `touched[p]` is the range contact part p wrote in its scratch arena. Returns the
+    /// largest sphere displacement, mm.
+    fn integration_stage<P: Parallel>(
+        &mut self,
+        par: &P,
+        parts: usize,
+        scratch: &mut [ThreadScratch<'_, S>],
+        touched: &Ranges,
+    ) -> Result<S, StepError> {
+        let nb = self.n_bodies as usize;
+        let ns = self.n_spheres as usize;
+        let mut ranges = Ranges::new();
+        split_ranges(
+            nb,
+            parts,
+            |b| self.first_sphere_of(b) as u64,
+            |_| true,
+            &mut ranges,
+        );
+        let sphere_starts: heapless::Vec<usize, MAX_PARTS> = ranges
+            .iter()
+            .map(|r| self.first_sphere_of(r.start))
+            .collect();
+        let mut jobs: heapless::Vec<IntegratePart<'_, S>, MAX_PARTS> = heapless::Vec::new();
+        {
+            let mut bodies = &mut self.bodies[..nb];
+            let mut spheres = &mut self.spheres[..ns];
+            let mut own = &mut self.forces[..nb];
+            // Each contact part's scratch arena, cut down to what it touched, then split below.
+            let mut beyond: heapless::Vec<(usize, &mut [BodyForce<S>]), MAX_PARTS> =
+                heapless::Vec::new();
+            let usable = scratch.iter_mut().filter(|a| a.len() >= nb);
+            for (arena, t) in usable.zip(touched.iter()) {
+                if !t.is_empty() {
+                    let _ = beyond.push((t.start, &mut arena[t.clone()]));
+                }
+            }
+            for (k, r) in ranges.iter().enumerate() {
+                let (b, rest) = core::mem::take(&mut bodies).split_at_mut(r.len());
+                bodies = rest;
+                let sphere_end = if k + 1 < ranges.len() {
+                    sphere_starts[k + 1]
+                } else {
+                    ns
+                };
+                let (s, rest) =
+                    core::mem::take(&mut spheres).split_at_mut(sphere_end - sphere_starts[k]);
+                spheres = rest;
+                let (o, rest) = core::mem::take(&mut own).split_at_mut(r.len());
+                own = rest;
+                let mut sums = heapless::Vec::new();
+                let _ = sums.push((r.clone(), o));
+                for (start, arena) in beyond.iter_mut() {
+                    // The part of this arena (covering `start..`) that falls in `r`.
+                    let lo = r.start.max(*start);
+                    let hi = r.end.min(*start + arena.len());
+                    if lo < hi {
+                        let (head, tail) = core::mem::take(arena).split_at_mut(hi - *start);
+                        *arena = tail;
+                        let skip = lo - *start;
+                        *start = hi;
+                        let _ = sums.push((lo..hi, &mut head[skip..]));
+                    }
+                }
+                let _ = jobs.push(IntegratePart {
+                    first_body: r.start,
+                    bodies: b,
+                    first_sphere: sphere_starts[k],
+                    spheres: s,
+                    sums,
+                    max_disp: S::ZERO,
+                    result: Ok(()),
+                });
+            }
+        }
+        let (dt, g) = (self.dt, self.gravity);
+        par.for_each(&mut jobs, &|part: &mut IntegratePart<'_, S>| {
+            part.run(dt, g)
+        });
+        let mut max_disp = S::ZERO;
+        for part in jobs.iter() {
+            part.result?;
+            max_disp = max_disp.max(part.max_disp);
+        }
+        Ok(max_disp)
+    }
+}
