@@ -1,6 +1,8 @@
 //! Micro benchmarks of the contact law alone, fixed point and f64:
 //! - `contact_law_evaluate`: [`PairParams::evaluate`] on one pod–pod contact (all
 //!   Hertz–Mindlin + CDT terms on);
+//! - `contact_fused`: the fused base law ([`arachis_core::contact::fused`]) on the same
+//!   contact, from the narrow phase's inputs;
 //! - `contact_roots`: the two square roots the narrow phase takes per contact, a = √(R*α) and
 //!   √(a·m*) (seed 000 eqs. (2), (4)), over overlaps of the settled bed.
 //!
@@ -9,8 +11,10 @@
 //!
 //! Run: `cargo bench -p arachis-benches --bench contact_law`.
 
+use arachis_core::contact::fused::{evaluate, FusedContact, Geometry};
 use arachis_core::contact::{ContactKinematics, ContactState};
 use arachis_core::material::MaterialSpec;
+use arachis_core::num::Envelope;
 use arachis_core::pair::{PairParams, PairSpec};
 use arachis_core::prelude::{Fx, Scalar, Vec3};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
@@ -96,5 +100,56 @@ fn roots(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, law, roots);
+/// The fused base law on the same contact, from the narrow phase's inputs.
+fn bench_fused<S: Scalar>(g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>)
+where
+    S::Fast: Envelope,
+{
+    let pod = MaterialSpec {
+        youngs_modulus_pa: 8.43e6,
+        poisson: 0.386,
+        density_kg_m3: 582.0,
+    }
+    .validate()
+    .expect("pod material");
+    let params: PairParams<S> =
+        PairParams::new(&pod, &pod, &PairSpec::hertz_mindlin(0.335, 0.854, 0.346));
+    let pair = params.fused.fast();
+    let f = |x: f64| S::from_f64(x).to_fast();
+    // Centres 7.982 mm apart along (0, 0.6, 0.8): R 4 mm each, overlap 0.018 mm.
+    let contact = FusedContact {
+        geometry: Geometry::Spheres {
+            d: Vec3::new(f(0.0), f(0.6 * 7.982), f(0.8 * 7.982)),
+            d2: f(7.982 * 7.982),
+            r_j: f(4.0),
+        },
+        r_i: f(4.0),
+        r_star: f(2.0),
+        m_star: f(0.078),
+        v_centres: Vec3::new(f(0.003), f(-0.004), f(0.0012)),
+        spin_i: Vec3::new(f(0.01), f(0.0), f(-0.02)),
+        spin_j: Vec3::new(f(0.0), f(0.015), f(0.0)),
+        offset_i: None,
+        offset_j: None,
+        dt: f(0.02),
+    };
+    let start = Vec3::new(f(1e-4), f(-2e-4), f(0.0));
+    g.bench_function(S::NAME, |b| {
+        b.iter(|| {
+            let mut delta = start;
+            let load = evaluate(black_box(&contact), black_box(&pair), &mut delta);
+            black_box((load, delta))
+        })
+    });
+}
+
+fn fused(c: &mut Criterion) {
+    let mut g = c.benchmark_group("contact_fused");
+    g.throughput(Throughput::Elements(1));
+    bench_fused::<Fx>(&mut g);
+    bench_fused::<f64>(&mut g);
+    g.finish();
+}
+
+criterion_group!(benches, law, roots, fused);
 criterion_main!(benches);

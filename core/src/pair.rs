@@ -8,6 +8,9 @@
 //! assert!(p.validate().is_ok());
 //! ```
 
+use crate::contact::fused::{
+    FusedPair, DAMPING_BITS, FRICTION_BITS, NORMAL_STIFFNESS_BITS, TANGENTIAL_STIFFNESS_BITS,
+};
 use crate::contact::{
     CohesionJkr, CohesionSjkr, HystereticNormal, RollingEpsd, ViscoelasticNormal,
 };
@@ -17,7 +20,7 @@ use crate::contact::{
 };
 use crate::error::SetupError;
 use crate::material::{finite, Material};
-use crate::num::Scalar;
+use crate::num::{Envelope, Scalar};
 
 /// Which terms a pair uses. Each switch turns one term to its "off" value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -127,6 +130,9 @@ pub struct PairParams<S> {
     pub rolling_epsd: RollingEpsd<S>,
     /// Optional effect: full JKR cohesion (off by default).
     pub jkr: CohesionJkr<S>,
+    /// The constants of the fused base law ([`crate::contact::fused`]), and whether the pair
+    /// may use it; kept up to date by [`PairParams::fuse`].
+    pub fused: FusedPair<S>,
 }
 
 impl<S: Scalar> PairParams<S> {
@@ -150,6 +156,7 @@ impl<S: Scalar> PairParams<S> {
             hysteretic: HystereticNormal::default(),
             rolling_epsd: RollingEpsd::default(),
             jkr: CohesionJkr::default(),
+            fused: FusedPair::default(),
         };
         p.hertz.on &= t.hertz_normal;
         p.normal_damping.on &= t.normal_damping;
@@ -157,7 +164,41 @@ impl<S: Scalar> PairParams<S> {
         p.tangential_damping.on &= t.tangential_damping && t.mindlin_tangential;
         p.coulomb.on &= t.coulomb_limit && t.mindlin_tangential;
         p.rolling.on &= t.rolling_cdt;
+        p.fuse();
         p
+    }
+
+    /// Set [`PairParams::fused`] from the terms: the fused law applies to a defined pair with
+    /// no optional effect, the Hertz, Mindlin and Coulomb terms on (damping and rolling may be
+    /// off: their factors are then zero) and constants inside the fused law's envelope.
+    pub fn fuse(&mut self) {
+        let on = |on: bool, x: S| if on { x } else { S::ZERO };
+        let f = FusedPair {
+            eligible: false,
+            four_thirds_e_star: self.hertz.four_thirds_e_star,
+            normal_damping: on(self.normal_damping.on, self.normal_damping.coef),
+            eight_g_star: self.tangential.eight_g_star,
+            tangential_damping: on(self.tangential_damping.on, self.tangential_damping.coef),
+            friction: self.coulomb.mu,
+            rolling_friction: on(self.rolling.on, self.rolling.mu_r),
+        };
+        let no_effects = !(self.viscoelastic.on
+            | self.cohesion.on
+            | self.hysteretic.on
+            | self.rolling_epsd.on
+            | self.jkr.on);
+        let base_on = self.hertz.on & self.tangential.on & self.coulomb.on;
+        let to_fx = |x: S| crate::num::Fx::from_f64(x.to_f64());
+        let in_range = to_fx(f.four_thirds_e_star).within(NORMAL_STIFFNESS_BITS)
+            & to_fx(f.eight_g_star).within(TANGENTIAL_STIFFNESS_BITS)
+            & to_fx(f.normal_damping).within(DAMPING_BITS)
+            & to_fx(f.tangential_damping).within(DAMPING_BITS)
+            & to_fx(f.friction).within(FRICTION_BITS)
+            & to_fx(f.rolling_friction).within(FRICTION_BITS);
+        self.fused = FusedPair {
+            eligible: self.defined & no_effects & base_on & in_range,
+            ..f
+        };
     }
 
     /// `true` when contacts of this pair keep history (tangential spring, hysteresis, EPSD

@@ -39,6 +39,7 @@
 pub mod cohesion_jkr;
 pub mod cohesion_sjkr;
 pub mod coulomb;
+pub mod fused;
 pub mod hertz_normal;
 pub mod history;
 pub mod hysteretic_normal;

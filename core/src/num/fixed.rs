@@ -377,11 +377,20 @@ impl Scalar for Fx {
     /// Raw Q32.32 values summed in 128 bits: a sum of fewer than 2^64 valid terms cannot
     /// overflow, and integer addition is associative.
     type Sum = i128;
+    type Fast = super::FxFast;
     const ZERO: Self = Fx(0);
     const ONE: Self = Fx(ONE_RAW);
     const HALF: Self = Fx(ONE_RAW / 2);
     const NAME: &'static str = "fixed";
 
+    #[inline(always)]
+    fn to_fast(self) -> super::FxFast {
+        self.into()
+    }
+    #[inline(always)]
+    fn from_fast(x: super::FxFast) -> Fx {
+        x.into()
+    }
     #[inline(always)]
     fn sum_add(sum: &mut i128, x: Fx) {
         *sum += x.0 as i128;

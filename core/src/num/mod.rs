@@ -4,12 +4,14 @@
 //! arithmetic only) and in `f64` (the reference path, used to *measure* quantisation error).
 
 pub mod fixed;
+pub mod fixed_fast;
 pub mod quantise;
 pub mod quat;
 pub mod scalar;
 pub mod vec3;
 
 pub use fixed::Fx;
+pub use fixed_fast::{Envelope, FxFast};
 pub use quat::{Mat3, Quat};
 pub use scalar::Scalar;
 pub use vec3::Vec3;

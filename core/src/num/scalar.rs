@@ -33,6 +33,9 @@ pub trait Scalar:
     /// they were split between threads (DESIGN §5). `f64`: an `f64`, whose sum depends on the
     /// order, as in every floating-point engine.
     type Sum: Copy + Debug + Default + PartialEq + Send + Sync + 'static;
+    /// The same numbers with unchecked arithmetic and fast roots, for the fused contact
+    /// kernel inside its overflow envelope ([`super::FxFast`] for fixed point; `f64` itself).
+    type Fast: super::Envelope;
 
     /// Additive identity.
     const ZERO: Self;
@@ -42,7 +45,15 @@ pub trait Scalar:
     const HALF: Self;
     /// Short name for messages and dumps ("fixed" or "f64").
     const NAME: &'static str;
+    /// Whether [`super::Vec3::normalize_with_len`] scales a vector by a power of two before
+    /// normalising it, to keep the precision of short vectors (fixed point); floating point
+    /// keeps it anyway.
+    const SCALED_NORMALIZE: bool = true;
 
+    /// The value as [`Scalar::Fast`] (the same bits).
+    fn to_fast(self) -> Self::Fast;
+    /// A [`Scalar::Fast`] value back (the same bits).
+    fn from_fast(x: Self::Fast) -> Self;
     /// Add a valid value to an accumulator.
     fn sum_add(sum: &mut Self::Sum, x: Self);
     /// Subtract a valid value from an accumulator.
@@ -127,11 +138,21 @@ pub trait Scalar:
 
 impl Scalar for f64 {
     type Sum = f64;
+    type Fast = f64;
     const ZERO: Self = 0.0;
     const ONE: Self = 1.0;
     const HALF: Self = 0.5;
     const NAME: &'static str = "f64";
+    const SCALED_NORMALIZE: bool = false;
 
+    #[inline(always)]
+    fn to_fast(self) -> f64 {
+        self
+    }
+    #[inline(always)]
+    fn from_fast(x: f64) -> f64 {
+        x
+    }
     #[inline(always)]
     fn sum_add(sum: &mut f64, x: f64) {
         *sum += x;

@@ -30,6 +30,11 @@ impl<S: Scalar> Vec3<S> {
     pub fn from_f64(v: [f64; 3]) -> Self {
         Vec3::new(S::from_f64(v[0]), S::from_f64(v[1]), S::from_f64(v[2]))
     }
+    /// Apply `f` to each component (e.g. to change the scalar type).
+    #[inline(always)]
+    pub fn map<T: Scalar>(self, f: impl Fn(S) -> T) -> Vec3<T> {
+        Vec3::new(f(self.x), f(self.y), f(self.z))
+    }
     /// Convert to `f64` components.
     pub fn to_f64(self) -> [f64; 3] {
         [self.x.to_f64(), self.y.to_f64(), self.z.to_f64()]
@@ -74,11 +79,18 @@ impl<S: Scalar> Vec3<S> {
     /// in [1, 2): then |u|² ∈ [1, 12) keeps full relative precision even for vectors whose
     /// squared length would round to (nearly) zero in Q32.32, and the result is a unit vector
     /// to about 2⁻³¹ (fuzz finding F4). u·rsqrt(|u|²) needs no division or square root.
+    ///
+    /// Floating point needs no scaling ([`Scalar::SCALED_NORMALIZE`] is false for `f64`).
     #[inline]
     pub fn normalize_with_len(self) -> Option<(Self, S)> {
         let m = self.x.abs().max(self.y.abs()).max(self.z.abs());
         if m == S::ZERO {
             return None;
+        }
+        if !S::SCALED_NORMALIZE {
+            let q = self.norm2();
+            let r = q.rsqrt();
+            return Some((self.scale(r), q * r));
         }
         let k = -m.log2_floor();
         let u = Vec3::new(self.x.mul_pow2(k), self.y.mul_pow2(k), self.z.mul_pow2(k));

@@ -13,6 +13,10 @@
 //! the ω component along ω̂ goes to zero at most, never negative: the torque never reverses ω
 //! within a step (DESIGN §2).
 //!
+//! Single spheres move in the unchecked arithmetic of [`Scalar::Fast`] while their loads and
+//! velocities lie inside bounds that exclude overflow ([`move_sphere_fast`]); others, and
+//! clumps, in the checked arithmetic.
+//!
 //! The stage runs in parts over disjoint body ranges ([`IntegratePart`]). Each body first
 //! gathers its force sums from every accumulator arena of the contact stage (and clears them
 //! for the next step), then moves. A kinematic body (inverse mass zero) keeps its velocity:
@@ -21,7 +25,7 @@
 use super::parts::MAX_PARTS;
 use crate::body::{Body, BodyForce, Sphere};
 use crate::error::{Other, Stage, StepError};
-use crate::num::{Scalar, Vec3};
+use crate::num::{Envelope, Scalar, Vec3};
 use core::ops::Range;
 
 /// One part of the integration stage: a range of bodies and their spheres.
@@ -69,6 +73,19 @@ impl<S: Scalar> IntegratePart<'_, S> {
             let id = self.first_body + k;
             let sums = self.take_sums(id);
             let b = &mut self.bodies[k];
+            if !b.is_clump {
+                if let Some(m) = move_sphere_fast(b, &sums, dt, g) {
+                    b.velocity = m.velocity;
+                    b.position = m.position;
+                    b.angular_velocity = m.angular_velocity;
+                    b.force = m.force;
+                    b.torque = m.torque;
+                    b.roll_torque = m.roll;
+                    self.spheres[b.first_sphere as usize - self.first_sphere].position = m.position;
+                    max_disp = max_disp.max(m.l1_displacement);
+                    continue;
+                }
+            }
             let force = sums.force();
             b.torque = sums.torque();
             b.roll_torque = sums.roll();
@@ -144,11 +161,113 @@ impl<S: Scalar> IntegratePart<'_, S> {
     }
 }
 
+/// Magnitudes inside which [`move_sphere_fast`] cannot overflow: powers of two of
+/// accelerations (mm/ms²) and velocities (mm/ms, rad/ms) …
+const ACCELERATION_BITS: i32 = 24;
+/// … of velocities at the start and end of the step (mm/ms, rad/ms) …
+const VELOCITY_BITS: i32 = 24;
+/// … of positions (mm) …
+const POSITION_BITS: i32 = 29;
+/// … of the time step (ms) …
+const TIMESTEP_BITS: i32 = 4;
+/// … and of force and torque sums (N, N·mm) and the weight.
+const LOAD_BITS: i32 = 30;
+
+/// The new state of a single-sphere body.
+struct SphereMove<S> {
+    velocity: Vec3<S>,
+    position: Vec3<S>,
+    angular_velocity: Vec3<S>,
+    force: Vec3<S>,
+    torque: Vec3<S>,
+    roll: S,
+    l1_displacement: S,
+}
+
+/// One step of a single-sphere body (module docs) in the unchecked [`Scalar::Fast`]
+/// arithmetic, or `None` when a magnitude lies outside the bounds above (then the checked
+/// arithmetic moves the body and reports any overflow). Inside them: a = F/m < 2^24 and
+/// (a + g)·dt < 2^28 (checked products), the new velocity is checked below 2^24, so
+/// v·dt < 2^28, the new position < 2^29 + 2^28 and the L1 displacement < 2^30; the spin
+/// increment T/I·dt < 2^28 and the rolling cap never exceeds ω·ω̂ ≤ |ω|.
+#[inline(always)]
+fn move_sphere_fast<S: Scalar>(
+    b: &Body<S>,
+    sums: &BodyForce<S>,
+    dt: S,
+    g: Vec3<S>,
+) -> Option<SphereMove<S>> {
+    let fast3 = |v: Vec3<S>| v.map(S::to_fast);
+    let within3 = |v: Vec3<S::Fast>, bits| v.x.within(bits) & v.y.within(bits) & v.z.within(bits);
+    let (force, torque, roll) = (fast3(sums.force()), fast3(sums.torque()), sums.roll().to_fast());
+    let (vel, pos, w0) = (fast3(b.velocity), fast3(b.position), fast3(b.angular_velocity));
+    let (dt, g) = (dt.to_fast(), fast3(g));
+    let (inv_m, inv_i, mass) = (b.inv_mass.to_fast(), b.inv_inertia.x.to_fast(), b.mass.to_fast());
+    let scaled = |v: Vec3<S::Fast>, s: S::Fast, bits| {
+        let (x, ox) = v.x.mul_within(s, bits);
+        let (y, oy) = v.y.mul_within(s, bits);
+        let (z, oz) = v.z.mul_within(s, bits);
+        (Vec3::new(x, y, z), ox & oy & oz)
+    };
+    let (acc, acc_in) = scaled(force, inv_m, ACCELERATION_BITS);
+    let (spin_acc, spin_in) = scaled(torque, inv_i, ACCELERATION_BITS);
+    let (roll_acc, roll_in) = roll.mul_within(inv_i, ACCELERATION_BITS);
+    let (weight, weight_in) = scaled(g, mass, LOAD_BITS);
+    let inputs_in = within3(force, LOAD_BITS)
+        & within3(torque, LOAD_BITS)
+        & roll.within(LOAD_BITS)
+        & within3(vel, VELOCITY_BITS)
+        & within3(w0, VELOCITY_BITS)
+        & within3(pos, POSITION_BITS)
+        & within3(g, ACCELERATION_BITS)
+        & dt.within(TIMESTEP_BITS)
+        & acc_in
+        & spin_in
+        & roll_in
+        & weight_in;
+    if !inputs_in {
+        return None;
+    }
+    // A kinematic body (inverse mass zero) keeps its velocity: no contact force, no gravity.
+    let velocity = if inv_m != S::Fast::ZERO {
+        vel + (acc + g).scale(dt)
+    } else {
+        vel
+    };
+    if !within3(velocity, VELOCITY_BITS) {
+        return None;
+    }
+    let dx = velocity.scale(dt);
+    let mut w = w0 + spin_acc.scale(dt);
+    if roll > S::Fast::ZERO {
+        if let Some((hat, _)) = w0.normalize_with_len() {
+            let along = w.dot(hat);
+            if along > S::Fast::ZERO {
+                w -= hat.scale((roll_acc * dt).min(along));
+            }
+        }
+    }
+    let back = |v: Vec3<S::Fast>| v.map(S::from_fast);
+    Some(SphereMove {
+        velocity: back(velocity),
+        position: back(pos + dx),
+        angular_velocity: back(w),
+        force: back(force + weight),
+        torque: back(torque),
+        roll: S::from_fast(roll),
+        l1_displacement: S::from_fast(dx.l1_norm()),
+    })
+}
+
 /// Unit vector along `v`, or `None` for the zero vector (accurate even for tiny ω, so rolling
 /// friction acts down to the last raw unit; no division: see [`Vec3::normalize_with_len`]).
+/// The scaled vector lies in [1, 2) per largest component, so the unchecked arithmetic of
+/// [`Scalar::Fast`] cannot overflow; its reciprocal root is the fast one.
 #[inline]
 fn unit<S: Scalar>(v: Vec3<S>) -> Option<Vec3<S>> {
-    v.normalize_with_len().map(|(u, _)| u)
+    v.map(S::to_fast)
+        .normalize_with_len()
+        .map(|(u, _)| u.map(S::from_fast))
 }
 
 fn overflow(id: usize) -> StepError {

@@ -7,13 +7,10 @@
 //! R* = RiRj/(Ri+Rj), m* = mimj/(mi+mj) (wall: R* = Ri, m* = mi), a = √(R*α). The contact
 //! point is c = ri + n̂(Ri − α/2); lever arms run from each body's centre of mass to c.
 //!
-//! Contacts are evaluated in batches of [`BATCH`]: the scan over the neighbour list collects
-//! the touching pairs, then each stage of the evaluation (normal and overlap; lever arms and
-//! relative velocity; the two roots of the contact radius; the contact terms; the loads) runs
-//! over the whole batch before the next. The contacts of a batch are independent, so the
-//! processor overlaps their long dependency chains (the integer roots above all) instead of
-//! waiting on one contact at a time. The arithmetic of each contact is the same as one at a
-//! time.
+//! A touching contact whose pair uses only the base law is evaluated by the fused law
+//! ([`crate::contact::fused`]) when it lies inside that law's overflow envelope; any other
+//! (optional effects, a base term switched off, an extreme state) by the pair's terms
+//! ([`crate::pair::PairParams::evaluate`]), which check every operation.
 //!
 //! The stage runs in parts ([`ContactPart`]): each part owns a range of owner spheres (whole
 //! bodies), the neighbour-list entries of those spheres (whose history it reads and updates in
@@ -29,6 +26,7 @@ use super::neighbour_list::{is_wall, key_of, LIVE_FLAG};
 use super::parts::PairTable;
 use crate::body::{Body, BodyForce, Sphere};
 use crate::bond::Bond;
+use crate::contact::fused::{evaluate, FusedContact, FusedLoad, Geometry};
 use crate::contact::{ContactKinematics, ContactState, EffectHistory, NeighbourEntry};
 use crate::error::{Other, Stage, StepError};
 use crate::num::{Scalar, Vec3};
@@ -77,49 +75,49 @@ pub(crate) struct ContactPart<'w, S: Scalar> {
     pub result: Result<(), StepError>,
 }
 
-/// Contacts evaluated together (see the module docs).
-pub const BATCH: usize = 16;
-
 impl<'w, S: Scalar> ContactPart<'w, S> {
     /// Evaluate every entry of the part.
     pub(crate) fn run(&mut self, sh: &Shared<'_, S>) {
-        let mut batch = Batch::new();
-        self.result = self
-            .scan(sh, &mut batch)
-            .and_then(|()| self.flush(sh, &mut batch));
+        self.result = self.scan(sh);
     }
 
-    /// Go through the part's entries: clear those whose pair does not touch, and batch the
-    /// touching ones.
-    fn scan(&mut self, sh: &Shared<'_, S>, batch: &mut Batch<S>) -> Result<(), StepError> {
+    /// Go through the part's entries: clear those whose pair does not touch, and evaluate the
+    /// touching ones, by the fused law where the pair and the envelope allow, else by their
+    /// terms.
+    fn scan(&mut self, sh: &Shared<'_, S>) -> Result<(), StepError> {
         let base = sh.offsets[self.spheres.start] as usize;
         let with_effects = !self.effects.is_empty();
         for i in self.spheres.clone() {
             let range = sh.offsets[i] as usize - base..sh.offsets[i + 1] as usize - base;
             for e in range {
-                let key = key_of(self.entries[e].partner);
-                let state =
-                    ContactState::join(&self.entries[e], with_effects.then(|| &self.effects[e]));
+                let entry = self.entries[e];
+                let key = key_of(entry.partner);
+                let state = ContactState::join(&entry, with_effects.then(|| &self.effects[e]));
                 let found = if is_wall(key) {
-                    wall_lane(sh, i, key, state)
+                    wall_touch(sh, i, key, state)?
                 } else {
-                    sphere_lane(sh, i, key as usize, state)
+                    sphere_touch(sh, i, key as usize, state)?
                 };
                 match found {
-                    Ok(Some(mut lane)) => {
-                        lane.entry = e as u32;
-                        batch.lanes[batch.len] = lane;
-                        batch.len += 1;
-                        if batch.len == BATCH {
-                            self.flush(sh, batch)?;
+                    Some(mut touch) => {
+                        let pair = touch.pair(sh);
+                        if pair.fused.eligible {
+                            let mut delta = state.delta.map(S::to_fast);
+                            let c = touch.fused_contact(sh);
+                            if let Some(load) = evaluate(&c, &pair.fused.fast(), &mut delta) {
+                                touch.state.delta = delta.map(S::from_fast);
+                                self.apply_touch(&touch, &load_of(&load));
+                                self.write(e, key, &touch.state, true);
+                                continue;
+                            }
                         }
+                        self.by_terms(sh, e, key, touch)?;
                     }
-                    Ok(None) => self.write(e, key, &ContactState::default(), false),
-                    Err(err) => {
-                        // Contacts earlier in the list fail first, as one at a time.
-                        self.flush(sh, batch)?;
-                        return Err(err);
+                    // Only entries that held something need writing.
+                    None if entry.partner != key || entry.delta != Vec3::ZERO || with_effects => {
+                        self.write(e, key, &ContactState::default(), false)
                     }
+                    None => {}
                 }
             }
         }
@@ -138,45 +136,45 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         }
     }
 
-    /// Evaluate the batched contacts stage by stage, apply their loads and store their
-    /// history; empties the batch.
-    fn flush(&mut self, sh: &Shared<'_, S>, batch: &mut Batch<S>) -> Result<(), StepError> {
-        let lanes = &mut batch.lanes[..batch.len];
-        batch.len = 0;
-        for l in lanes.iter_mut() {
-            l.geometry(sh);
-        }
-        for l in lanes.iter_mut() {
-            l.kinematics(sh);
-        }
-        for l in lanes.iter_mut() {
-            l.roots(sh);
-        }
-        for l in lanes.iter_mut() {
-            l.law(sh);
-        }
-        for l in lanes.iter() {
-            let load = l.load.as_ref().ok_or(l.overflow(sh))?;
-            let key = key_of(self.entries[l.entry as usize].partner);
-            let bi = l.body_i as usize;
-            if l.is_wall() {
-                self.apply(load, bi, None);
-                let wf = &mut self.wall_force[l.wall as usize];
-                S::sum_add(&mut wf[0], load.force.x);
-                S::sum_add(&mut wf[1], load.force.y);
-                S::sum_add(&mut wf[2], load.force.z);
-            } else {
-                self.apply(load, bi, Some(l.body_j as usize));
-            }
-            let pair = l.pair(sh);
-            if pair.jkr.on && !l.state.jkr_attached {
-                // The JKR neck broke (beyond the separation): the law gave no force.
-                self.write(l.entry as usize, key, &ContactState::default(), false);
-            } else {
-                self.write(l.entry as usize, key, &l.state, pair.keeps_history());
-            }
+    /// Evaluate the touching contact of entry `e` by its pair's terms (checked arithmetic),
+    /// apply its loads and store its history.
+    fn by_terms(
+        &mut self,
+        sh: &Shared<'_, S>,
+        e: usize,
+        key: u32,
+        touch: Touch<S>,
+    ) -> Result<(), StepError> {
+        let pair = touch.pair(sh);
+        let mut lane = Lane::new(touch);
+        lane.geometry(sh);
+        lane.kinematics(sh);
+        lane.roots(sh);
+        lane.law(sh);
+        let load = lane.load.ok_or(lane.t.overflow())?;
+        self.apply_touch(&lane.t, &load);
+        if pair.jkr.on && !lane.t.state.jkr_attached {
+            // The JKR neck broke (beyond the separation): the law gave no force.
+            self.write(e, key, &ContactState::default(), false);
+        } else {
+            self.write(e, key, &lane.t.state, pair.keeps_history());
         }
         Ok(())
+    }
+
+    /// Add a contact's loads to its bodies (and to its wall's force).
+    #[inline(always)]
+    fn apply_touch(&mut self, lane: &Touch<S>, load: &Load<S>) {
+        let bi = lane.body_i as usize;
+        if lane.is_wall() {
+            self.apply(load, bi, None);
+            let wf = &mut self.wall_force[lane.wall as usize];
+            S::sum_add(&mut wf[0], load.force.x);
+            S::sum_add(&mut wf[1], load.force.y);
+            S::sum_add(&mut wf[2], load.force.z);
+        } else {
+            self.apply(load, bi, Some(lane.body_j as usize));
+        }
     }
 
     /// The accumulator of body `b` (in the part's range, or beyond it).
@@ -213,29 +211,12 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
     }
 }
 
-/// The touching contacts collected for one evaluation.
-struct Batch<S: Scalar> {
-    lanes: [Lane<S>; BATCH],
-    len: usize,
-}
-
-impl<S: Scalar> Batch<S> {
-    fn new() -> Self {
-        Batch {
-            lanes: [Lane::default(); BATCH],
-            len: 0,
-        }
-    }
-}
-
 /// Marks a lane whose partner is a wall (`Lane::body_j`).
 const WALL_LANE: u32 = u32::MAX;
 
-/// One touching contact in a batch: what the scan found, then each stage's results.
-#[derive(Clone, Copy, Default)]
-struct Lane<S: Scalar> {
-    /// Entry index within the part.
-    entry: u32,
+/// A touching contact as the scan found it.
+#[derive(Clone, Copy)]
+struct Touch<S: Scalar> {
     /// Sphere i and its body.
     sphere_i: u32,
     body_i: u32,
@@ -246,9 +227,24 @@ struct Lane<S: Scalar> {
     /// Materials of i and of j (or of the wall).
     material_i: u16,
     material_j: u16,
-    /// j − i between sphere centres (sphere lanes), mm, and its square, mm².
+    /// j − i between sphere centres (sphere contacts), mm, and its square, mm².
     d: Vec3<S>,
     d2: S,
+    /// Unit normal from i towards j, and the overlap α, mm (wall contacts; sphere contacts
+    /// get them from `d` in the evaluation).
+    normal: Vec3<S>,
+    overlap: S,
+    /// The wall's velocity, mm/ms (zero for a sphere partner).
+    wall_velocity: Vec3<S>,
+    /// History, updated by the evaluation.
+    state: ContactState<S>,
+}
+
+/// A contact evaluated by the pair's terms: what the scan found, then each stage's results.
+#[derive(Clone, Copy)]
+struct Lane<S: Scalar> {
+    /// The contact as found.
+    t: Touch<S>,
     /// Unit normal from i towards j, and the overlap α, mm.
     normal: Vec3<S>,
     overlap: S,
@@ -261,24 +257,41 @@ struct Lane<S: Scalar> {
     /// Lever arms from each body's centre of mass to the contact point, mm.
     arm_i: Vec3<S>,
     arm_j: Vec3<S>,
-    /// Contact velocity v_j − v_i at the contact point, mm/ms (walls: the wall's velocity).
+    /// Contact velocity v_j − v_i at the contact point, mm/ms.
     v_rel: Vec3<S>,
     /// What the contact terms see.
     kin: ContactKinematics<S>,
-    /// History, updated by the terms.
-    state: ContactState<S>,
     /// The loads; `None` when a value overflowed.
     load: Option<Load<S>>,
 }
 
-/// The lane of sphere–wall entry `key` of sphere `si`, if that face touches.
+impl<S: Scalar> Lane<S> {
+    fn new(t: Touch<S>) -> Self {
+        Lane {
+            t,
+            normal: t.normal,
+            overlap: t.overlap,
+            r_star_alpha: S::ZERO,
+            r_star: S::ZERO,
+            m_star: S::ZERO,
+            arm_len_j: S::ZERO,
+            arm_i: Vec3::ZERO,
+            arm_j: Vec3::ZERO,
+            v_rel: t.wall_velocity,
+            kin: ContactKinematics::default(),
+            load: None,
+        }
+    }
+}
+
+/// The contact of sphere–wall entry `key` of sphere `si`, if that face touches.
 #[inline(always)]
-fn wall_lane<S: Scalar>(
+fn wall_touch<S: Scalar>(
     sh: &Shared<'_, S>,
     si: usize,
     key: u32,
     state: ContactState<S>,
-) -> Result<Option<Lane<S>>, StepError> {
+) -> Result<Option<Touch<S>>, StepError> {
     let wi = ((key & !crate::contact::WALL_PARTNER_FLAG) >> 4) as usize;
     let face = key & 0xF;
     let s = &sh.spheres[si];
@@ -292,7 +305,7 @@ fn wall_lane<S: Scalar>(
             material_b: w.material,
         });
     }
-    Ok(Some(Lane {
+    Ok(Some(Touch {
         sphere_i: si as u32,
         body_i: s.body,
         sphere_j: WALL_LANE,
@@ -300,22 +313,23 @@ fn wall_lane<S: Scalar>(
         wall: wi as u32,
         material_i: s.material,
         material_j: w.material,
+        d: Vec3::ZERO,
+        d2: S::ZERO,
         normal,
         overlap,
-        v_rel: w.velocity,
+        wall_velocity: w.velocity,
         state,
-        ..Lane::default()
     }))
 }
 
-/// The lane of neighbour-list pair (i < j), if it touches (and is not bonded).
+/// The contact of neighbour-list pair (i < j), if it touches (and is not bonded).
 #[inline(always)]
-fn sphere_lane<S: Scalar>(
+fn sphere_touch<S: Scalar>(
     sh: &Shared<'_, S>,
     i: usize,
     j: usize,
     state: ContactState<S>,
-) -> Result<Option<Lane<S>>, StepError> {
+) -> Result<Option<Touch<S>>, StepError> {
     let si = &sh.spheres[i];
     let sj = &sh.spheres[j];
     let d = sj.position - si.position;
@@ -354,21 +368,24 @@ fn sphere_lane<S: Scalar>(
             material_b: sj.material,
         });
     }
-    Ok(Some(Lane {
+    Ok(Some(Touch {
         sphere_i: i as u32,
         body_i: si.body,
         sphere_j: j as u32,
         body_j: sj.body,
+        wall: 0,
         material_i: si.material,
         material_j: sj.material,
         d,
         d2,
+        normal: Vec3::ZERO,
+        overlap: S::ZERO,
+        wall_velocity: Vec3::ZERO,
         state,
-        ..Lane::default()
     }))
 }
 
-impl<S: Scalar> Lane<S> {
+impl<S: Scalar> Touch<S> {
     #[inline(always)]
     fn is_wall(&self) -> bool {
         self.body_j == WALL_LANE
@@ -380,7 +397,7 @@ impl<S: Scalar> Lane<S> {
     }
 
     /// The error of an overflow in this contact, naming both parties.
-    fn overflow(&self, _sh: &Shared<'_, S>) -> StepError {
+    fn overflow(&self) -> StepError {
         if self.is_wall() {
             StepError::Overflow {
                 stage: Stage::WallContact,
@@ -396,21 +413,89 @@ impl<S: Scalar> Lane<S> {
         }
     }
 
+    /// The contact as the fused law sees it, in [`Scalar::Fast`] arithmetic.
+    #[inline(always)]
+    fn fused_contact(&self, sh: &Shared<'_, S>) -> FusedContact<S::Fast> {
+        let si = &sh.spheres[self.sphere_i as usize];
+        let bi = &sh.bodies[self.body_i as usize];
+        // Velocity of a sphere's centre, and its centre's offset from the body's centre of
+        // mass (clumps only; checked arithmetic, as in the terms).
+        let centre = |s: &Sphere<S>, b: &Body<S>| {
+            if b.is_clump {
+                let o = s.position - b.position;
+                (b.velocity + b.angular_velocity.cross(o), Some(o.map(S::to_fast)))
+            } else {
+                (b.velocity, None)
+            }
+        };
+        let (v_i, offset_i) = centre(si, bi);
+        let fast = |v: Vec3<S>| v.map(S::to_fast);
+        if self.is_wall() {
+            return FusedContact {
+                geometry: Geometry::Wall {
+                    normal: fast(self.normal),
+                    overlap: self.overlap.to_fast(),
+                },
+                r_i: si.radius.to_fast(),
+                r_star: si.radius.to_fast(),
+                m_star: bi.mass.to_fast(),
+                v_centres: fast(self.wall_velocity - v_i),
+                spin_i: fast(bi.angular_velocity),
+                spin_j: Vec3::ZERO,
+                offset_i,
+                offset_j: None,
+                dt: sh.dt.to_fast(),
+            };
+        }
+        let sj = &sh.spheres[self.sphere_j as usize];
+        let bj = &sh.bodies[self.body_j as usize];
+        let (v_j, offset_j) = centre(sj, bj);
+        // R* = RiRj/(Ri+Rj) and m* = mimj/(mi+mj), halved exactly when equal.
+        let r_star = if si.radius == sj.radius {
+            si.radius * S::HALF
+        } else {
+            si.radius * sj.radius / (si.radius + sj.radius)
+        };
+        let m_star = if bi.mass == bj.mass {
+            bi.mass * S::HALF
+        } else {
+            S::ONE / (bi.inv_mass + bj.inv_mass)
+        };
+        FusedContact {
+            geometry: Geometry::Spheres {
+                d: fast(self.d),
+                d2: self.d2.to_fast(),
+                r_j: sj.radius.to_fast(),
+            },
+            r_i: si.radius.to_fast(),
+            r_star: r_star.to_fast(),
+            m_star: m_star.to_fast(),
+            v_centres: fast(v_j - v_i),
+            spin_i: fast(bi.angular_velocity),
+            spin_j: fast(bj.angular_velocity),
+            offset_i,
+            offset_j,
+            dt: sh.dt.to_fast(),
+        }
+    }
+}
+
+impl<S: Scalar> Lane<S> {
     /// Normal, overlap, R*·α, R* and m* (module docs; a wall lane has its normal and overlap
     /// from the wall, R* = Ri and m* = mi).
     #[inline(always)]
     fn geometry(&mut self, sh: &Shared<'_, S>) {
-        let pair = self.pair(sh);
-        let si = &sh.spheres[self.sphere_i as usize];
-        if self.is_wall() {
+        let pair = self.t.pair(sh);
+        let si = &sh.spheres[self.t.sphere_i as usize];
+        if self.t.is_wall() {
             self.r_star_alpha = si.radius * self.overlap;
             self.r_star = si.radius;
-            self.m_star = sh.bodies[self.body_i as usize].mass;
+            self.m_star = sh.bodies[self.t.body_i as usize].mass;
             return;
         }
-        let sj = &sh.spheres[self.sphere_j as usize];
+        let sj = &sh.spheres[self.t.sphere_j as usize];
         let rs = si.radius + sj.radius;
-        let (d, d2) = (self.d, self.d2);
+        let (d, d2) = (self.t.d, self.t.d2);
         // Beyond 1 mm the squared distance has ≥ 32 significant bits: dist is its correctly
         // rounded root (the overlap needs every bit) and the normal only needs 1/dist to within
         // a unit, which rsqrt gives without a division. Closer centres (huge overlaps)
@@ -444,8 +529,8 @@ impl<S: Scalar> Lane<S> {
         };
         self.m_star = if pair.needs_damping() {
             let (bi, bj) = (
-                &sh.bodies[self.body_i as usize],
-                &sh.bodies[self.body_j as usize],
+                &sh.bodies[self.t.body_i as usize],
+                &sh.bodies[self.t.body_j as usize],
             );
             if bi.mass == bj.mass {
                 bi.mass * S::HALF
@@ -462,9 +547,9 @@ impl<S: Scalar> Lane<S> {
     /// friction, and the EPSD relative spin and rolling inertia.
     #[inline(always)]
     fn kinematics(&mut self, sh: &Shared<'_, S>) {
-        let pair = self.pair(sh);
-        let si = &sh.spheres[self.sphere_i as usize];
-        let bod_i = &sh.bodies[self.body_i as usize];
+        let pair = self.t.pair(sh);
+        let si = &sh.spheres[self.t.sphere_i as usize];
+        let bod_i = &sh.bodies[self.t.body_i as usize];
         let n = self.normal;
         let arm_len_i = si.radius - self.overlap * S::HALF;
         let c = si.position + n.scale(arm_len_i);
@@ -479,8 +564,8 @@ impl<S: Scalar> Lane<S> {
             w_rel = bod_i.angular_velocity;
             rolling_inertia = rolling_moment(bod_i, arm_i);
         }
-        if !self.is_wall() {
-            let bod_j = &sh.bodies[self.body_j as usize];
+        if !self.t.is_wall() {
+            let bod_j = &sh.bodies[self.t.body_j as usize];
             arm_j = c - bod_j.position;
             if pair.rolling_epsd.on {
                 w_rel -= bod_j.angular_velocity;
@@ -533,7 +618,7 @@ impl<S: Scalar> Lane<S> {
             S::ZERO
         };
         self.kin.contact_radius = a;
-        self.kin.sqrt_a_mstar = if self.pair(sh).needs_damping() {
+        self.kin.sqrt_a_mstar = if self.t.pair(sh).needs_damping() {
             (a * self.m_star).sqrt()
         } else {
             S::ZERO
@@ -543,11 +628,11 @@ impl<S: Scalar> Lane<S> {
     /// The contact terms, then the force on j and the lever torques.
     #[inline(always)]
     fn law(&mut self, sh: &Shared<'_, S>) {
-        let pair = self.pair(sh);
+        let pair = self.t.pair(sh);
         if !pair.keeps_history() {
-            self.state = ContactState::default();
+            self.t.state = ContactState::default();
         }
-        let out = pair.evaluate(&self.kin, &mut self.state);
+        let out = pair.evaluate(&self.kin, &mut self.t.state);
         let f = self.normal.scale(out.normal) + out.tangential;
         let mut ti = self.arm_i.cross(f);
         let mut tj = self.arm_j.cross(f);
@@ -561,7 +646,7 @@ impl<S: Scalar> Lane<S> {
             & tj.is_valid()
             & out.roll_i.is_valid()
             & out.roll_j.is_valid()
-            & self.state.delta.is_valid();
+            & self.t.state.delta.is_valid();
         self.load = valid.then_some(Load {
             force: f,
             torque_i: ti,
@@ -569,6 +654,18 @@ impl<S: Scalar> Lane<S> {
             roll_i: out.roll_i,
             roll_j: out.roll_j,
         });
+    }
+}
+
+/// The loads of a fused evaluation in the world's scalar.
+#[inline(always)]
+fn load_of<S: Scalar>(l: &FusedLoad<S::Fast>) -> Load<S> {
+    Load {
+        force: l.force.map(S::from_fast),
+        torque_i: l.torque_i.map(S::from_fast),
+        torque_j: l.torque_j.map(S::from_fast),
+        roll_i: S::from_fast(l.roll_i),
+        roll_j: S::from_fast(l.roll_j),
     }
 }
 

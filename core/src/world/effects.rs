@@ -74,6 +74,7 @@ impl<S: Scalar> World<'_, S> {
                 });
             }
         }
+        p.fuse();
         self.pairs[ia][ib] = p;
         self.pairs[ib][ia] = p;
         Ok(())

@@ -1,0 +1,414 @@
+//! [`FxFast`]: Q32.32 with the bits of [`Fx`] but without overflow checks, and with fast
+//! deterministic roots, for the fused contact kernel ([`crate::contact::fused`]).
+//!
+//! Each operation of [`Fx`] tests its operands for the overflow poison and its result for
+//! the range, so that any overflow is reported (DESIGN §4). The fused kernel instead checks a
+//! few magnitudes of each contact against an *envelope* ([`Envelope::within`]) inside which
+//! no operation can overflow, and falls back to the checked path for a contact outside it: the
+//! rule "overflow is never silent" holds, at a few comparisons per contact instead of one per
+//! operation. Inside the envelope sums, differences and products are the same bits as
+//! [`Fx`]'s.
+//!
+//! The square root is not: [`Scalar::sqrt`] is X·(1/√X) on the normalised mantissa, from
+//! [`Fx`]'s reciprocal root (a 9-bit table and three Newton steps, ≥ 58 correct bits), rounded
+//! once, instead of the
+//! correctly rounded root with its exact fix-up; it lies within a unit or two of it. It is a
+//! fixed sequence of integer operations, so it gives the same bits on every machine.
+//!
+//! ```
+//! use arachis_core::num::{Envelope, Fx, FxFast, Scalar};
+//! let x = FxFast::from_f64(2.0);
+//! assert!((x.sqrt().to_f64() - 2f64.sqrt()).abs() < 1e-9);
+//! assert!((x.rsqrt().to_f64() - 0.5f64.sqrt()).abs() < 1e-9);
+//! assert_eq!((x * x).raw(), (Fx::from_f64(2.0) * Fx::from_f64(2.0)).raw());
+//! assert!(x.within(2) && !x.within(1));
+//! ```
+
+use super::fixed::FRAC_BITS;
+use super::scalar::Scalar;
+use super::Fx;
+use core::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
+
+/// Magnitude tests for the fused kernel's envelope.
+pub trait Envelope: Scalar {
+    /// `|self| < 2^log2` (false for NaN, ∞ and the overflow poison); `log2` ≤ 30.
+    fn within(self, log2: i32) -> bool;
+    /// A square root to about 2^-28 relative (0 for x ≤ 0): enough for a stiffness, cheaper
+    /// than [`Scalar::sqrt`] in fixed point.
+    fn sqrt_coarse(self) -> Self {
+        self.sqrt()
+    }
+    /// The product, and whether it is `within(log2)`. The test sees the exact product even
+    /// where the operands are large enough for the product to leave the range.
+    fn mul_within(self, o: Self, log2: i32) -> (Self, bool) {
+        let p = self * o;
+        (p, p.within(log2))
+    }
+}
+
+impl Envelope for f64 {
+    #[inline(always)]
+    fn within(self, log2: i32) -> bool {
+        self.abs() < (1u64 << log2) as f64
+    }
+}
+
+impl Envelope for Fx {
+    #[inline(always)]
+    fn within(self, log2: i32) -> bool {
+        self.raw().unsigned_abs() < 1u64 << (FRAC_BITS as i32 + log2)
+    }
+}
+
+/// Unchecked Q32.32 (see the module docs).
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Default, Debug)]
+#[repr(transparent)]
+pub struct FxFast(i64);
+
+/// Entries of [`RSQRT_TABLE_FINE`]: one per top-10-bit value 256..=1023 of a normalised input.
+const RSQRT_TABLE_FINE_LEN: usize = 768;
+
+/// 1/√X at the midpoints of X ∈ [¼, 1) in 768 bins, in units of 2^-30 (≤ 2^31, fits `u32`):
+/// entry i = ⌊√(2^71 / (2(i + 256) + 1))⌋ = 2^30/√((2(i + 256) + 1)/2048), rounded down. Built
+/// at compile time with integer arithmetic only. Its relative error is below 2^-10, so two
+/// Newton steps give 38 correct bits.
+const RSQRT_TABLE_FINE: [u32; RSQRT_TABLE_FINE_LEN] = {
+    let mut t = [0u32; RSQRT_TABLE_FINE_LEN];
+    let mut i = 0;
+    while i < RSQRT_TABLE_FINE_LEN {
+        let idx = i as u128 + 256;
+        t[i] = ((1u128 << 71) / (2 * idx + 1)).isqrt() as u32;
+        i += 1;
+    }
+    t
+};
+
+/// Q2.62 reciprocal square root Y = 1/√X of X = x/2^64 ∈ [¼, 1) (x ≥ 2^62): the 10-bit table
+/// value and two Newton steps Y ← Y(3 − XY²)/2 (≥ 38 correct bits), integer multiplications
+/// only.
+#[inline(always)]
+fn rsqrt_q62_fast(x: u64) -> u64 {
+    let mut y = (RSQRT_TABLE_FINE[(x >> 54) as usize - 256] as u64) << 32;
+    for _ in 0..2 {
+        let y2 = (y as u128 * y as u128) >> 62;
+        let t = (x as u128 * y2) >> 64;
+        let f = (3u128 << 62).saturating_sub(t);
+        y = ((y as u128 * f) >> 63) as u64;
+    }
+    y
+}
+
+/// Half a unit of the last place of a Q64.64 product, for rounding to nearest.
+const ROUND_HALF: i128 = 1 << (FRAC_BITS - 1);
+
+impl FxFast {
+    /// From raw Q32.32 bits.
+    #[inline(always)]
+    pub const fn from_raw(raw: i64) -> Self {
+        FxFast(raw)
+    }
+    /// Raw Q32.32 bits.
+    #[inline(always)]
+    pub const fn raw(self) -> i64 {
+        self.0
+    }
+    #[inline(always)]
+    fn round(p: i128) -> FxFast {
+        FxFast(((p + ROUND_HALF) >> FRAC_BITS) as i64)
+    }
+}
+
+impl From<Fx> for FxFast {
+    #[inline(always)]
+    fn from(x: Fx) -> Self {
+        FxFast(x.raw())
+    }
+}
+
+impl From<FxFast> for Fx {
+    #[inline(always)]
+    fn from(x: FxFast) -> Self {
+        Fx::from_raw(x.0)
+    }
+}
+
+impl Envelope for FxFast {
+    #[inline(always)]
+    fn within(self, log2: i32) -> bool {
+        self.0.unsigned_abs() < 1u64 << (FRAC_BITS as i32 + log2)
+    }
+    /// From the top 32 bits of the normalised mantissa, the 10-bit table and two Newton steps
+    /// in 64-bit products.
+    #[inline(always)]
+    fn sqrt_coarse(self) -> Self {
+        if self.0 <= 0 {
+            return FxFast(0);
+        }
+        // raw·4^(e/2) = X·2^64 with X = x32/2^32 ∈ [¼, 1); Y = 1/√X and √X = X·Y in Q30.
+        let e = self.0.leading_zeros() & !1;
+        let x = (self.0 as u64) << e;
+        let x32 = x >> 32;
+        let mut y = RSQRT_TABLE_FINE[(x >> 54) as usize - 256] as u64;
+        for _ in 0..2 {
+            let y2 = (y * y) >> 30;
+            let t = (x32 * y2) >> 32;
+            y = (y * (3u64 << 30).saturating_sub(t)) >> 31;
+        }
+        let root_x = (x32 * y) >> 32;
+        // √(raw·2^32) = √X·2^(48 − e/2), so raw_out = root_x·2^(18 − e/2).
+        let half = e / 2;
+        FxFast(if half <= 18 {
+            (root_x << (18 - half)) as i64
+        } else {
+            let s = half - 18;
+            (((root_x >> (s - 1)) + 1) >> 1) as i64
+        })
+    }
+    #[inline(always)]
+    fn mul_within(self, o: Self, log2: i32) -> (Self, bool) {
+        // Both raw operands are below 2^63, so the 128-bit product and its rounding are exact.
+        let q = (self.0 as i128 * o.0 as i128 + ROUND_HALF) >> FRAC_BITS;
+        (
+            FxFast(q as i64),
+            q.unsigned_abs() < 1u128 << (FRAC_BITS as i32 + log2),
+        )
+    }
+}
+
+impl Add for FxFast {
+    type Output = FxFast;
+    #[inline(always)]
+    fn add(self, o: FxFast) -> FxFast {
+        FxFast(self.0.wrapping_add(o.0))
+    }
+}
+impl Sub for FxFast {
+    type Output = FxFast;
+    #[inline(always)]
+    fn sub(self, o: FxFast) -> FxFast {
+        FxFast(self.0.wrapping_sub(o.0))
+    }
+}
+impl Neg for FxFast {
+    type Output = FxFast;
+    #[inline(always)]
+    fn neg(self) -> FxFast {
+        FxFast(self.0.wrapping_neg())
+    }
+}
+impl Mul for FxFast {
+    type Output = FxFast;
+    /// Round-to-nearest (ties toward +∞) product, as [`Fx`]'s.
+    #[inline(always)]
+    fn mul(self, o: FxFast) -> FxFast {
+        FxFast::round(self.0 as i128 * o.0 as i128)
+    }
+}
+impl Div for FxFast {
+    type Output = FxFast;
+    /// [`Fx`]'s division (exact, rounded to nearest; rare in the kernel).
+    #[inline]
+    fn div(self, o: FxFast) -> FxFast {
+        (Fx::from(self) / Fx::from(o)).into()
+    }
+}
+impl AddAssign for FxFast {
+    #[inline(always)]
+    fn add_assign(&mut self, o: FxFast) {
+        *self = *self + o;
+    }
+}
+impl SubAssign for FxFast {
+    #[inline(always)]
+    fn sub_assign(&mut self, o: FxFast) {
+        *self = *self - o;
+    }
+}
+
+impl Scalar for FxFast {
+    type Sum = i128;
+    type Fast = FxFast;
+    const ZERO: Self = FxFast(0);
+    const ONE: Self = FxFast(1 << FRAC_BITS);
+    const HALF: Self = FxFast(1 << (FRAC_BITS - 1));
+    const NAME: &'static str = "fixed-fast";
+
+    #[inline(always)]
+    fn to_fast(self) -> FxFast {
+        self
+    }
+    #[inline(always)]
+    fn from_fast(x: FxFast) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn sum_add(sum: &mut i128, x: Self) {
+        *sum += x.0 as i128;
+    }
+    #[inline(always)]
+    fn sum_sub(sum: &mut i128, x: Self) {
+        *sum -= x.0 as i128;
+    }
+    #[inline(always)]
+    fn sum_merge(sum: &mut i128, other: i128) {
+        *sum += other;
+    }
+    #[inline(always)]
+    fn sum_value(sum: i128) -> Self {
+        Fx::sum_value(sum).into()
+    }
+    fn from_f64(x: f64) -> Self {
+        Fx::from_f64(x).into()
+    }
+    fn to_f64(self) -> f64 {
+        Fx::from(self).to_f64()
+    }
+    /// √X = X·(1/√X) on the normalised mantissa (module docs), rounded once; 0 for x ≤ 0.
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        if self.0 <= 0 {
+            return FxFast(0);
+        }
+        // raw·4^(e/2) = X·2^64; √(raw·2^32) = √X·2^(48 − e/2), and x·y >> 64 is √X in Q2.62.
+        let e = self.0.leading_zeros() & !1;
+        let x = (self.0 as u64) << e;
+        let y = rsqrt_q62_fast(x);
+        let root_x = ((x as u128 * y as u128) >> 64) as u64;
+        let sh = 14 + e / 2;
+        FxFast(((root_x >> (sh - 1)) + 1) as i64 >> 1)
+    }
+    #[inline(always)]
+    fn is_valid(self) -> bool {
+        Fx::from(self).is_valid()
+    }
+    fn to_bits(self) -> u64 {
+        self.0 as u64
+    }
+    #[inline(always)]
+    fn mul_int(self, k: i32) -> Self {
+        FxFast(self.0.wrapping_mul(k as i64))
+    }
+    fn floor_i64(self) -> i64 {
+        self.0 >> FRAC_BITS
+    }
+    /// 1/√x from [`rsqrt_q62_fast`]; 0 for x ≤ 0.
+    #[inline(always)]
+    fn rsqrt(self) -> Self {
+        if self.0 <= 0 {
+            return FxFast(0);
+        }
+        // As `Fx::rsqrt`: raw·4^(e/2) = X·2^64, X ∈ [¼, 1), raw_out = Y·2^(16 + e/2).
+        let e = self.0.leading_zeros() & !1;
+        let y = rsqrt_q62_fast((self.0 as u64) << e);
+        let sh = 46 - e / 2;
+        FxFast(((y >> (sh - 1)) + 1) as i64 >> 1)
+    }
+    /// (√x, 1/√x) from one reciprocal root: the pair [`Scalar::sqrt`] and [`Scalar::rsqrt`]
+    /// give, at the cost of one.
+    #[inline(always)]
+    fn sqrt_rsqrt(self) -> (Self, Self) {
+        if self.0 <= 0 {
+            return (FxFast(0), FxFast(0));
+        }
+        let e = self.0.leading_zeros() & !1;
+        let x = (self.0 as u64) << e;
+        let y = rsqrt_q62_fast(x);
+        let root_x = ((x as u128 * y as u128) >> 64) as u64;
+        let (sh_r, sh_s) = (46 - e / 2, 14 + e / 2);
+        (
+            FxFast(((root_x >> (sh_s - 1)) + 1) as i64 >> 1),
+            FxFast(((y >> (sh_r - 1)) + 1) as i64 >> 1),
+        )
+    }
+    #[inline(always)]
+    fn log2_floor(self) -> i32 {
+        if self.0 == 0 {
+            return 0;
+        }
+        63 - self.0.unsigned_abs().leading_zeros() as i32 - FRAC_BITS as i32
+    }
+    /// x·2^k: a left shift (unchecked) or a right shift rounded to nearest, as [`Fx`]'s.
+    #[inline(always)]
+    fn mul_pow2(self, k: i32) -> Self {
+        if k >= 0 {
+            FxFast(self.0.wrapping_shl(k as u32))
+        } else {
+            let s = (-k).min(64) as u32;
+            FxFast(((self.0 as i128 + (1i128 << (s - 1))) >> s) as i64)
+        }
+    }
+    #[inline(always)]
+    fn dot3(a: Self, b: Self, c: Self, d: Self, e: Self, f: Self) -> Self {
+        FxFast::round(
+            a.0 as i128 * b.0 as i128 + c.0 as i128 * d.0 as i128 + e.0 as i128 * f.0 as i128,
+        )
+    }
+    #[inline(always)]
+    fn mul_sub(a: Self, b: Self, c: Self, d: Self) -> Self {
+        FxFast::round(a.0 as i128 * b.0 as i128 - c.0 as i128 * d.0 as i128)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Inside the range, sums, products, dot products and cross terms are Fx's bits.
+    #[test]
+    fn arithmetic_matches_fx_inside_the_range() {
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        for _ in 0..100_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            // Values up to ±2^14 (raw 2^46): products and sums of three stay inside the range.
+            let a = (x as i64) >> 17;
+            let b = (x.rotate_left(23) as i64) >> 17;
+            let (fa, fb) = (Fx::from_raw(a), Fx::from_raw(b));
+            let (qa, qb) = (FxFast(a), FxFast(b));
+            assert_eq!((qa * qb).raw(), (fa * fb).raw());
+            assert_eq!((qa + qb).raw(), (fa + fb).raw());
+            assert_eq!((qa - qb).raw(), (fa - fb).raw());
+            assert_eq!(
+                FxFast::dot3(qa, qb, qb, qa, qa, qa).raw(),
+                Fx::dot3(fa, fb, fb, fa, fa, fa).raw()
+            );
+            assert_eq!(
+                FxFast::mul_sub(qa, qb, qb, qb).raw(),
+                Fx::mul_sub(fa, fb, fb, fb).raw()
+            );
+            // A product far outside the range is seen as such, not wrapped back inside.
+            let big = FxFast::from_raw(a << 16);
+            let (_, inside) = big.mul_within(big, 30);
+            assert_eq!(
+                inside,
+                (Fx::from_raw(a << 16) * Fx::from_raw(a << 16)).within(30)
+            );
+        }
+    }
+
+    /// Both roots are within a few units of the last place (and 2^-37 relative) of Fx's
+    /// correctly rounded ones, over 60 binary decades.
+    #[test]
+    fn fast_roots_are_accurate() {
+        let mut v = 1e-9;
+        while v < 1e9 {
+            // (1e-9 … 1e9: 60 binary decades.)
+            for k in 0..37 {
+                let x = v * (1.0 + k as f64 / 37.0);
+                let q = FxFast::from_f64(x);
+                assert_eq!(q.sqrt_rsqrt(), (q.sqrt(), q.rsqrt()));
+                let close = |got: i64, exact: i64| (got - exact).abs() <= 2 + (exact.abs() >> 37);
+                let r = Fx::from(q).rsqrt().raw();
+                assert!(
+                    close(q.rsqrt().raw(), r),
+                    "rsqrt {x}: {:?} vs {r}",
+                    q.rsqrt()
+                );
+                let s = Fx::from(q).sqrt().raw();
+                assert!(close(q.sqrt().raw(), s), "sqrt {x}: {:?} vs {s}", q.sqrt());
+            }
+            v *= 2.0;
+        }
+    }
+}
