@@ -20,5 +20,6 @@ pub mod plant_study;
 pub mod repose;
 pub mod shapes;
 pub mod stats;
+pub mod stepping;
 pub mod study;
 pub mod vtk;

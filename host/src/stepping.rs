@@ -1,0 +1,157 @@
+//! Stepping a core world on several threads.
+//!
+//! The core splits the contact and integration stages of a step into parts over disjoint body
+//! ranges and lets the caller run them ([`arachis_core::step::parts::Parallel`]); it owns no
+//! threads. [`Stepper`] runs those parts on a rayon pool of its own, with the per-thread force
+//! arenas the core needs ([`OwnedThreadScratch`]). In fixed point the result is the same bits
+//! for any thread count (DESIGN §5; tested in `core/tests/digest_scenarios.rs`), so the count
+//! is a speed setting only.
+//!
+//! ```
+//! use arachis::stepping::Stepper;
+//! use arachis_core::prelude::*;
+//! use arachis_core::scenario::bench_bed::BenchBed;
+//! let bed = BenchBed { particles: 50, seed: 1 };
+//! let mut arena = arachis::arena::OwnedStorage::<Fx>::new(bed.storage_lengths());
+//! let mut world = bed.build(arena.storage()).unwrap();
+//! let mut stepper = Stepper::new(2).unwrap();
+//! stepper.run(&mut world, 10).unwrap();
+//! assert_eq!(world.step_count(), 10);
+//! ```
+
+use anyhow::Context;
+use arachis_core::error::StepError;
+use arachis_core::num::Scalar;
+use arachis_core::owned::OwnedThreadScratch;
+use arachis_core::step::parts::Parallel;
+use arachis_core::world::World;
+use rayon::prelude::*;
+
+/// Largest `--threads` accepted: far more than any machine this runs on has cores, small
+/// enough that a typo (`--threads 100000`) is refused instead of spawning threads.
+pub const MAX_THREADS: usize = arachis_core::step::parts::MAX_PARTS;
+
+/// The number of threads a command uses when `--threads` is not given: every core the
+/// operating system offers this process (1 if it cannot tell).
+pub fn default_threads() -> usize {
+    std::thread::available_parallelism()
+        .map(|n| n.get())
+        .unwrap_or(1)
+        .min(MAX_THREADS)
+}
+
+/// Check a `--threads` value: 1 to [`MAX_THREADS`].
+pub fn check_threads(threads: usize) -> anyhow::Result<usize> {
+    anyhow::ensure!(
+        (1..=MAX_THREADS).contains(&threads),
+        "--threads must be between 1 and {MAX_THREADS}, got {threads}"
+    );
+    Ok(threads)
+}
+
+/// Runs the parts of a stage on a rayon pool.
+struct PoolParts<'p> {
+    pool: &'p rayon::ThreadPool,
+    parts: usize,
+}
+
+impl Parallel for PoolParts<'_> {
+    fn parts(&self) -> usize {
+        self.parts
+    }
+    fn for_each<J: Send>(&self, jobs: &mut [J], f: &(dyn Fn(&mut J) + Sync)) {
+        self.pool.install(|| jobs.par_iter_mut().for_each(f));
+    }
+}
+
+/// Steps worlds on a fixed number of threads (module docs).
+pub struct Stepper<S: Scalar> {
+    /// The pool, when more than one thread is asked for.
+    pool: Option<rayon::ThreadPool>,
+    threads: usize,
+    /// Force arenas of the extra parts, sized for the last world stepped.
+    scratch: OwnedThreadScratch<S>,
+    scratch_bodies: usize,
+}
+
+impl<S: Scalar> Stepper<S> {
+    /// A stepper on `threads` threads (1 steps on the calling thread). Errors for a count
+    /// outside 1..=[`MAX_THREADS`] or when the operating system refuses the threads.
+    pub fn new(threads: usize) -> anyhow::Result<Self> {
+        let threads = check_threads(threads)?;
+        let pool = if threads > 1 {
+            Some(
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .thread_name(|i| format!("arachis-step-{i}"))
+                    .build()
+                    .context("cannot start the stepping threads")?,
+            )
+        } else {
+            None
+        };
+        Ok(Stepper {
+            pool,
+            threads,
+            scratch: OwnedThreadScratch::new(0, 0),
+            scratch_bodies: 0,
+        })
+    }
+
+    /// The number of threads.
+    pub fn threads(&self) -> usize {
+        self.threads
+    }
+
+    /// Run `steps` steps of `world`, stopping at the first error.
+    pub fn run(&mut self, world: &mut World<'_, S>, steps: u64) -> Result<(), StepError> {
+        let Some(pool) = &self.pool else {
+            return world.run(steps);
+        };
+        let bodies = world.bodies().len();
+        if bodies != self.scratch_bodies {
+            self.scratch = OwnedThreadScratch::new(self.threads, bodies);
+            self.scratch_bodies = bodies;
+        }
+        let parts = PoolParts {
+            pool,
+            parts: self.threads,
+        };
+        let mut arenas = self.scratch.arenas();
+        for _ in 0..steps {
+            world.step_with(&parts, &mut arenas)?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use arachis_core::prelude::*;
+    use arachis_core::scenario::bench_bed::BenchBed;
+
+    /// The same bed stepped on 1, 2 and 3 threads ends on the same digest.
+    #[test]
+    fn thread_count_does_not_change_the_bits() {
+        let bed = BenchBed {
+            particles: 300,
+            seed: 7,
+        };
+        let digest = |threads| {
+            let mut arena = crate::arena::OwnedStorage::<Fx>::new(bed.storage_lengths());
+            let mut world = bed.build(arena.storage()).unwrap();
+            Stepper::new(threads).unwrap().run(&mut world, 400).unwrap();
+            world.digest()
+        };
+        let one = digest(1);
+        assert_eq!(digest(2), one);
+        assert_eq!(digest(3), one);
+    }
+
+    #[test]
+    fn refuses_zero_and_absurd_thread_counts() {
+        assert!(Stepper::<Fx>::new(0).is_err());
+        assert!(Stepper::<Fx>::new(MAX_THREADS + 1).is_err());
+    }
+}
