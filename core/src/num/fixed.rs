@@ -250,7 +250,7 @@ const NEAREST_ROOT_GUESS_BITS: u32 = 60;
 /// comparisons, made without branches, because a guess's last unit is random and a branch on
 /// it is mispredicted often.
 #[inline(always)]
-fn nearest_root(d: i64, r: i64) -> Option<i64> {
+pub(crate) fn nearest_root(d: i64, r: i64) -> Option<i64> {
     if d <= 6 - 5 * r || d > 5 * r + 6 {
         return None;
     }
@@ -439,6 +439,10 @@ impl Scalar for Fx {
     #[inline]
     fn to_bits(self) -> u64 {
         self.0 as u64
+    }
+    #[inline(always)]
+    fn from_bits(bits: u64) -> Self {
+        Fx(bits as i64)
     }
     #[inline]
     fn mul_int(self, k: i32) -> Self {

@@ -26,7 +26,7 @@
 
 use super::fixed::FRAC_BITS;
 use super::scalar::Scalar;
-use super::Fx;
+use super::{Fx, Vec3};
 use core::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
 /// Magnitude tests for the fused kernel's envelope.
@@ -43,6 +43,15 @@ pub trait Envelope: Scalar {
     fn mul_within(self, o: Self, log2: i32) -> (Self, bool) {
         let p = self * o;
         (p, p.within(log2))
+    }
+    /// A magnitude at least the largest |component| of `v` and less than twice it, for one
+    /// [`Envelope::within`] test of all three components.
+    fn magnitude3(v: Vec3<Self>) -> Self {
+        v.x.abs().max(v.y.abs()).max(v.z.abs())
+    }
+    /// The unit vector along `v` to about 2^-28 (`None` for the zero vector).
+    fn unit3(v: Vec3<Self>) -> Option<Vec3<Self>> {
+        v.normalize_with_len().map(|(u, _)| u)
     }
 }
 
@@ -98,6 +107,21 @@ fn rsqrt_q62_fast(x: u64) -> u64 {
     y
 }
 
+/// Q30 reciprocal square root 1/√X of X = x/2^64 ∈ [¼, 1) (x ≥ 2^62; result ≤ 2^31): the
+/// 10-bit table value and two Newton steps Y ← Y(3 − XY²)/2 in 64-bit products, good to about
+/// 2^-28.
+#[inline(always)]
+pub(crate) fn rsqrt_q30(x: u64) -> u64 {
+    let x32 = x >> 32;
+    let mut y = RSQRT_TABLE_FINE[(x >> 54) as usize - 256] as u64;
+    for _ in 0..2 {
+        let y2 = (y * y) >> 30;
+        let t = (x32 * y2) >> 32;
+        y = (y * (3u64 << 30).saturating_sub(t)) >> 31;
+    }
+    y
+}
+
 /// Half a unit of the last place of a Q64.64 product, for rounding to nearest.
 const ROUND_HALF: i128 = 1 << (FRAC_BITS - 1);
 
@@ -147,14 +171,8 @@ impl Envelope for FxFast {
         // raw·4^(e/2) = X·2^64 with X = x32/2^32 ∈ [¼, 1); Y = 1/√X and √X = X·Y in Q30.
         let e = self.0.leading_zeros() & !1;
         let x = (self.0 as u64) << e;
-        let x32 = x >> 32;
-        let mut y = RSQRT_TABLE_FINE[(x >> 54) as usize - 256] as u64;
-        for _ in 0..2 {
-            let y2 = (y * y) >> 30;
-            let t = (x32 * y2) >> 32;
-            y = (y * (3u64 << 30).saturating_sub(t)) >> 31;
-        }
-        let root_x = (x32 * y) >> 32;
+        let y = rsqrt_q30(x);
+        let root_x = ((x >> 32) * y) >> 32;
         // √(raw·2^32) = √X·2^(48 − e/2), so raw_out = root_x·2^(18 − e/2).
         let half = e / 2;
         FxFast(if half <= 18 {
@@ -163,6 +181,49 @@ impl Envelope for FxFast {
             let s = half - 18;
             (((root_x >> (s - 1)) + 1) >> 1) as i64
         })
+    }
+    /// |x| | |y| | |z| on the raw bits: below twice the largest magnitude, and below 2^k
+    /// exactly when every component is.
+    #[inline(always)]
+    fn magnitude3(v: Vec3<Self>) -> Self {
+        FxFast(
+            (v.x.0.unsigned_abs() | v.y.0.unsigned_abs() | v.z.0.unsigned_abs())
+                .min(i64::MAX as u64) as i64,
+        )
+    }
+    /// Scale `v` exactly (a shift) so that its largest component lies in [2^30, 2^31) raw,
+    /// then multiply by the reciprocal root of its squared length ([`rsqrt_q30`]): integer
+    /// multiplications only, no division.
+    #[inline(always)]
+    fn unit3(v: Vec3<Self>) -> Option<Vec3<Self>> {
+        let m = v.x.0.unsigned_abs() | v.y.0.unsigned_abs() | v.z.0.unsigned_abs();
+        if m == 0 {
+            return None;
+        }
+        // Bring the largest magnitude to [2^30, 2^31): a left shift is exact; a right shift
+        // (|v| ≥ 2^-1 raw … only for huge vectors) rounds, which a unit vector does not mind.
+        let lz = m.leading_zeros() as i32;
+        let scale = |x: i64| -> i64 {
+            let k = lz - 33;
+            if k >= 0 {
+                x << k
+            } else {
+                let s = (-k) as u32;
+                (x + (1 << (s - 1))) >> s
+            }
+        };
+        let u = [scale(v.x.0), scale(v.y.0), scale(v.z.0)];
+        // q < 3·2^62 < 2^64 and q ≥ 2^60 (one component ≥ 2^30 after rounding).
+        let q = u
+            .iter()
+            .map(|&c| (c * c) as u64)
+            .fold(0u64, u64::wrapping_add);
+        let e = q.leading_zeros() & !1; // 0 or 2 (q ≥ 2^60)
+        let y = rsqrt_q30(q << e); // 1/√(q·2^e/2^64) in Q30
+                                   // û = u/√q = u·y·2^(e/2 − 62); in Q32.32: u·y >> (30 − e/2). u·y < 2^31·2^31.
+        let sh = 30 - e / 2;
+        let unit = |c: i64| FxFast((c * y as i64 + (1 << (sh - 1))) >> sh);
+        Some(Vec3::new(unit(u[0]), unit(u[1]), unit(u[2])))
     }
     #[inline(always)]
     fn mul_within(self, o: Self, log2: i32) -> (Self, bool) {
@@ -283,6 +344,10 @@ impl Scalar for FxFast {
     }
     fn to_bits(self) -> u64 {
         self.0 as u64
+    }
+    #[inline(always)]
+    fn from_bits(bits: u64) -> Self {
+        FxFast(bits as i64)
     }
     #[inline(always)]
     fn mul_int(self, k: i32) -> Self {

@@ -45,10 +45,11 @@ pub trait Scalar:
     const HALF: Self;
     /// Short name for messages and dumps ("fixed" or "f64").
     const NAME: &'static str;
-    /// Whether [`super::Vec3::normalize_with_len`] scales a vector by a power of two before
-    /// normalising it, to keep the precision of short vectors (fixed point); floating point
-    /// keeps it anyway.
-    const SCALED_NORMALIZE: bool = true;
+    /// Whether the raw bits ([`Scalar::to_bits`]) are a Q32.32 integer (fixed point). Fixed
+    /// point then takes the narrow integer kernels (e.g. [`crate::contact::fused`]) and
+    /// [`super::Vec3::normalize_with_len`] scales short vectors before normalising them;
+    /// floating point keeps its precision anyway.
+    const Q32_32: bool = true;
 
     /// The value as [`Scalar::Fast`] (the same bits).
     fn to_fast(self) -> Self::Fast;
@@ -75,6 +76,8 @@ pub trait Scalar:
     fn is_valid(self) -> bool;
     /// Raw bits for the digest (`f64::to_bits` or the Q32.32 raw integer).
     fn to_bits(self) -> u64;
+    /// The value with these raw bits (the inverse of [`Scalar::to_bits`]).
+    fn from_bits(bits: u64) -> Self;
     /// Multiply by a small integer exactly (used for constant factors such as 2).
     fn mul_int(self, k: i32) -> Self;
     /// Floor to an integer, saturating at the `i64` range (grid binning).
@@ -143,7 +146,7 @@ impl Scalar for f64 {
     const ONE: Self = 1.0;
     const HALF: Self = 0.5;
     const NAME: &'static str = "f64";
-    const SCALED_NORMALIZE: bool = false;
+    const Q32_32: bool = false;
 
     #[inline(always)]
     fn to_fast(self) -> f64 {
@@ -189,6 +192,10 @@ impl Scalar for f64 {
     #[inline]
     fn to_bits(self) -> u64 {
         f64::to_bits(self)
+    }
+    #[inline(always)]
+    fn from_bits(bits: u64) -> Self {
+        f64::from_bits(bits)
     }
     #[inline]
     fn mul_int(self, k: i32) -> Self {

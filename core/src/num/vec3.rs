@@ -80,14 +80,14 @@ impl<S: Scalar> Vec3<S> {
     /// squared length would round to (nearly) zero in Q32.32, and the result is a unit vector
     /// to about 2⁻³¹ (fuzz finding F4). u·rsqrt(|u|²) needs no division or square root.
     ///
-    /// Floating point needs no scaling ([`Scalar::SCALED_NORMALIZE`] is false for `f64`).
+    /// Floating point needs no scaling ([`Scalar::Q32_32`] is false for `f64`).
     #[inline]
     pub fn normalize_with_len(self) -> Option<(Self, S)> {
         let m = self.x.abs().max(self.y.abs()).max(self.z.abs());
         if m == S::ZERO {
             return None;
         }
-        if !S::SCALED_NORMALIZE {
+        if !S::Q32_32 {
             let q = self.norm2();
             let r = q.rsqrt();
             return Some((self.scale(r), q * r));

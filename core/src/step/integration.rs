@@ -170,8 +170,14 @@ const VELOCITY_BITS: i32 = 24;
 const POSITION_BITS: i32 = 29;
 /// … of the time step (ms) …
 const TIMESTEP_BITS: i32 = 4;
-/// … and of force and torque sums (N, N·mm) and the weight.
+/// … of force and torque sums (N, N·mm) …
 const LOAD_BITS: i32 = 30;
+/// … of the inverse mass and inertia (1/g, 1/(g·mm²)) …
+const INVERSE_BITS: i32 = 30;
+/// … of gravity (mm/ms²) …
+const GRAVITY_BITS: i32 = 16;
+/// … and of the mass (g), for the reported weight.
+const MASS_BITS: i32 = 12;
 
 /// The new state of a single-sphere body.
 struct SphereMove<S> {
@@ -186,10 +192,11 @@ struct SphereMove<S> {
 
 /// One step of a single-sphere body (module docs) in the unchecked [`Scalar::Fast`]
 /// arithmetic, or `None` when a magnitude lies outside the bounds above (then the checked
-/// arithmetic moves the body and reports any overflow). Inside them: a = F/m < 2^24 and
-/// (a + g)·dt < 2^28 (checked products), the new velocity is checked below 2^24, so
-/// v·dt < 2^28, the new position < 2^29 + 2^28 and the L1 displacement < 2^30; the spin
-/// increment T/I·dt < 2^28 and the rolling cap never exceeds ω·ω̂ ≤ |ω|.
+/// arithmetic moves the body and reports any overflow). Each bound is tested once for a whole
+/// vector ([`Envelope::magnitude3`]). Inside them: a = F/m < 2^24 and (a + g)·dt < 2^28
+/// (checked products), the new velocity is checked below 2^24, so v·dt < 2^28, the new
+/// position < 2^29 + 2^28 and the L1 displacement < 2^30; the spin increment T/I·dt < 2^28
+/// and the rolling cap never exceeds ω·ω̂ ≤ |ω|.
 #[inline(always)]
 fn move_sphere_fast<S: Scalar>(
     b: &Body<S>,
@@ -197,39 +204,55 @@ fn move_sphere_fast<S: Scalar>(
     dt: S,
     g: Vec3<S>,
 ) -> Option<SphereMove<S>> {
+    type F<S> = <S as Scalar>::Fast;
     let fast3 = |v: Vec3<S>| v.map(S::to_fast);
-    let within3 = |v: Vec3<S::Fast>, bits| v.x.within(bits) & v.y.within(bits) & v.z.within(bits);
-    let (force, torque, roll) = (fast3(sums.force()), fast3(sums.torque()), sums.roll().to_fast());
-    let (vel, pos, w0) = (fast3(b.velocity), fast3(b.position), fast3(b.angular_velocity));
+    let within3 = |v: Vec3<F<S>>, bits| F::<S>::magnitude3(v).within(bits);
+    let (force, torque, roll) = (
+        fast3(sums.force()),
+        fast3(sums.torque()),
+        sums.roll().to_fast(),
+    );
+    let (vel, pos, w0) = (
+        fast3(b.velocity),
+        fast3(b.position),
+        fast3(b.angular_velocity),
+    );
     let (dt, g) = (dt.to_fast(), fast3(g));
-    let (inv_m, inv_i, mass) = (b.inv_mass.to_fast(), b.inv_inertia.x.to_fast(), b.mass.to_fast());
-    let scaled = |v: Vec3<S::Fast>, s: S::Fast, bits| {
-        let (x, ox) = v.x.mul_within(s, bits);
-        let (y, oy) = v.y.mul_within(s, bits);
-        let (z, oz) = v.z.mul_within(s, bits);
-        (Vec3::new(x, y, z), ox & oy & oz)
-    };
-    let (acc, acc_in) = scaled(force, inv_m, ACCELERATION_BITS);
-    let (spin_acc, spin_in) = scaled(torque, inv_i, ACCELERATION_BITS);
-    let (roll_acc, roll_in) = roll.mul_within(inv_i, ACCELERATION_BITS);
-    let (weight, weight_in) = scaled(g, mass, LOAD_BITS);
+    let (inv_m, inv_i, mass) = (
+        b.inv_mass.to_fast(),
+        b.inv_inertia.x.to_fast(),
+        b.mass.to_fast(),
+    );
     let inputs_in = within3(force, LOAD_BITS)
         & within3(torque, LOAD_BITS)
         & roll.within(LOAD_BITS)
         & within3(vel, VELOCITY_BITS)
         & within3(w0, VELOCITY_BITS)
         & within3(pos, POSITION_BITS)
-        & within3(g, ACCELERATION_BITS)
+        & within3(g, GRAVITY_BITS)
         & dt.within(TIMESTEP_BITS)
-        & acc_in
-        & spin_in
-        & roll_in
-        & weight_in;
+        & inv_m.within(INVERSE_BITS)
+        & inv_i.within(INVERSE_BITS)
+        & mass.within(MASS_BITS);
     if !inputs_in {
         return None;
     }
+    // The three products with an inverse mass or inertia are tested exactly
+    // (`mul_within` sees the whole product), since a light body has a large inverse.
+    let scaled = |v: Vec3<F<S>>, s: F<S>| {
+        let (x, ox) = v.x.mul_within(s, ACCELERATION_BITS);
+        let (y, oy) = v.y.mul_within(s, ACCELERATION_BITS);
+        let (z, oz) = v.z.mul_within(s, ACCELERATION_BITS);
+        (Vec3::new(x, y, z), ox & oy & oz)
+    };
+    let (acc, acc_in) = scaled(force, inv_m);
+    let (spin_acc, spin_in) = scaled(torque, inv_i);
+    let (roll_acc, roll_in) = roll.mul_within(inv_i, ACCELERATION_BITS);
+    if !(acc_in & spin_in & roll_in) {
+        return None;
+    }
     // A kinematic body (inverse mass zero) keeps its velocity: no contact force, no gravity.
-    let velocity = if inv_m != S::Fast::ZERO {
+    let velocity = if inv_m != F::<S>::ZERO {
         vel + (acc + g).scale(dt)
     } else {
         vel
@@ -239,20 +262,21 @@ fn move_sphere_fast<S: Scalar>(
     }
     let dx = velocity.scale(dt);
     let mut w = w0 + spin_acc.scale(dt);
-    if roll > S::Fast::ZERO {
-        if let Some((hat, _)) = w0.normalize_with_len() {
+    if roll > F::<S>::ZERO {
+        if let Some(hat) = F::<S>::unit3(w0) {
             let along = w.dot(hat);
-            if along > S::Fast::ZERO {
+            if along > F::<S>::ZERO {
                 w -= hat.scale((roll_acc * dt).min(along));
             }
         }
     }
-    let back = |v: Vec3<S::Fast>| v.map(S::from_fast);
+    let back = |v: Vec3<F<S>>| v.map(S::from_fast);
     Some(SphereMove {
         velocity: back(velocity),
         position: back(pos + dx),
         angular_velocity: back(w),
-        force: back(force + weight),
+        // m < 2^12 and |g| < 2^16 keep m·g < 2^28 before the sum with |F| < 2^30.
+        force: back(force + g.scale(mass)),
         torque: back(torque),
         roll: S::from_fast(roll),
         l1_displacement: S::from_fast(dx.l1_norm()),
@@ -265,9 +289,7 @@ fn move_sphere_fast<S: Scalar>(
 /// [`Scalar::Fast`] cannot overflow; its reciprocal root is the fast one.
 #[inline]
 fn unit<S: Scalar>(v: Vec3<S>) -> Option<Vec3<S>> {
-    v.map(S::to_fast)
-        .normalize_with_len()
-        .map(|(u, _)| u.map(S::from_fast))
+    S::Fast::unit3(v.map(S::to_fast)).map(|u| u.map(S::from_fast))
 }
 
 fn overflow(id: usize) -> StepError {

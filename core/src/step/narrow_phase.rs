@@ -26,7 +26,7 @@ use super::neighbour_list::{is_wall, key_of, LIVE_FLAG};
 use super::parts::PairTable;
 use crate::body::{Body, BodyForce, Sphere};
 use crate::bond::Bond;
-use crate::contact::fused::{evaluate, FusedContact, FusedLoad, Geometry};
+use crate::contact::fused::{evaluate_fast, FusedContact, FusedLoad, Geometry};
 use crate::contact::{ContactKinematics, ContactState, EffectHistory, NeighbourEntry};
 use crate::error::{Other, Stage, StepError};
 use crate::num::{Scalar, Vec3};
@@ -104,7 +104,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
                         if pair.fused.eligible {
                             let mut delta = state.delta.map(S::to_fast);
                             let c = touch.fused_contact(sh);
-                            if let Some(load) = evaluate(&c, &pair.fused.fast(), &mut delta) {
+                            if let Some(load) = evaluate_fast(&c, &pair.fused.fast(), &mut delta) {
                                 touch.state.delta = delta.map(S::from_fast);
                                 self.apply_touch(&touch, &load_of(&load));
                                 self.write(e, key, &touch.state, true);
@@ -423,7 +423,10 @@ impl<S: Scalar> Touch<S> {
         let centre = |s: &Sphere<S>, b: &Body<S>| {
             if b.is_clump {
                 let o = s.position - b.position;
-                (b.velocity + b.angular_velocity.cross(o), Some(o.map(S::to_fast)))
+                (
+                    b.velocity + b.angular_velocity.cross(o),
+                    Some(o.map(S::to_fast)),
+                )
             } else {
                 (b.velocity, None)
             }

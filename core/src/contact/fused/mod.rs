@@ -62,7 +62,9 @@
 //! assert!((load.force.z - hertz).abs() < 1e-12);
 //! ```
 
-use crate::num::{Envelope, Scalar, Vec3};
+pub mod fixed;
+
+use crate::num::{Envelope, FxFast, Scalar, Vec3};
 
 /// Lengths (lever lengths, R*, clump offsets) below 2^LENGTH_BITS mm.
 pub const LENGTH_BITS: i32 = 5;
@@ -118,14 +120,20 @@ impl<S: Scalar> FusedPair<S> {
     /// The same constants in [`Scalar::Fast`].
     #[inline(always)]
     pub fn fast(&self) -> FusedPair<S::Fast> {
+        self.map(S::to_fast)
+    }
+
+    /// The constants through `f` (e.g. to another scalar type with the same bits).
+    #[inline(always)]
+    pub fn map<T: Scalar>(&self, f: impl Fn(S) -> T) -> FusedPair<T> {
         FusedPair {
             eligible: self.eligible,
-            four_thirds_e_star: self.four_thirds_e_star.to_fast(),
-            normal_damping: self.normal_damping.to_fast(),
-            eight_g_star: self.eight_g_star.to_fast(),
-            tangential_damping: self.tangential_damping.to_fast(),
-            friction: self.friction.to_fast(),
-            rolling_friction: self.rolling_friction.to_fast(),
+            four_thirds_e_star: f(self.four_thirds_e_star),
+            normal_damping: f(self.normal_damping),
+            eight_g_star: f(self.eight_g_star),
+            tangential_damping: f(self.tangential_damping),
+            friction: f(self.friction),
+            rolling_friction: f(self.rolling_friction),
         }
     }
 }
@@ -190,6 +198,70 @@ pub struct FusedLoad<T> {
     pub roll_i: T,
     /// Rolling-resistance torque magnitude on j, N·mm.
     pub roll_j: T,
+}
+
+impl<T: Scalar> FusedContact<T> {
+    /// The contact through `f` (e.g. to another scalar type with the same bits).
+    #[inline(always)]
+    pub fn map<U: Scalar>(&self, f: impl Fn(T) -> U + Copy) -> FusedContact<U> {
+        FusedContact {
+            geometry: match self.geometry {
+                Geometry::Spheres { d, d2, r_j } => Geometry::Spheres {
+                    d: d.map(f),
+                    d2: f(d2),
+                    r_j: f(r_j),
+                },
+                Geometry::Wall { normal, overlap } => Geometry::Wall {
+                    normal: normal.map(f),
+                    overlap: f(overlap),
+                },
+            },
+            r_i: f(self.r_i),
+            r_star: f(self.r_star),
+            m_star: f(self.m_star),
+            v_centres: self.v_centres.map(f),
+            spin_i: self.spin_i.map(f),
+            spin_j: self.spin_j.map(f),
+            offset_i: self.offset_i.map(|o| o.map(f)),
+            offset_j: self.offset_j.map(|o| o.map(f)),
+            dt: f(self.dt),
+        }
+    }
+}
+
+impl<T: Scalar> FusedLoad<T> {
+    /// The loads through `f` (e.g. to another scalar type with the same bits).
+    #[inline(always)]
+    pub fn map<U: Scalar>(&self, f: impl Fn(T) -> U + Copy) -> FusedLoad<U> {
+        FusedLoad {
+            force: self.force.map(f),
+            torque_i: self.torque_i.map(f),
+            torque_j: self.torque_j.map(f),
+            roll_i: f(self.roll_i),
+            roll_j: f(self.roll_j),
+        }
+    }
+}
+
+/// Evaluate the fused law with the fastest kernel for `T`: the integer kernel of [`fixed`]
+/// when `T` is Q32.32 fixed point, else [`evaluate`]. `None` (and `delta`
+/// untouched) outside the envelope.
+#[inline(always)]
+pub fn evaluate_fast<T: Envelope>(
+    c: &FusedContact<T>,
+    p: &FusedPair<T>,
+    delta: &mut Vec3<T>,
+) -> Option<FusedLoad<T>> {
+    if !T::Q32_32 {
+        return evaluate(c, p, delta);
+    }
+    // The same bits, seen as the integer kernel's type (the conversions compile to nothing).
+    let to = |x: T| FxFast::from_raw(x.to_bits() as i64);
+    let back = |x: FxFast| T::from_bits(x.raw() as u64);
+    let mut d = delta.map(to);
+    let load = fixed::evaluate(&c.map(to), &p.map(to), &mut d)?;
+    *delta = d.map(back);
+    Some(load.map(back))
 }
 
 /// What one contact carries from stage to stage.
@@ -325,6 +397,7 @@ fn forces<T: Envelope>(
     }
     l.f_n = f_n;
     l.f_t = f_t;
+
     // Coulomb limit |Ft| ≤ μs·Fn; when the spring alone exceeds it, the history is rescaled
     // so that St|δt| = μs·Fn.
     let mut d = d;
