@@ -172,10 +172,6 @@ fn run<S: Scalar>(n: usize, steps: u64) {
         secs * 1e3 / steps as f64,
         w.digest()
     );
-    use core::sync::atomic::Ordering::Relaxed;
-    let r = arachis_core::step::neighbour_list::REBUILDS.load(Relaxed);
-    let e = arachis_core::step::neighbour_list::ENTRIES.load(Relaxed);
-    println!("rebuilds {r}, mean entries {}", e / r.max(1));
 }
 
 fn main() {

@@ -1,4 +1,10 @@
 //! [`Sphere`]: the contact primitive. A free sphere is a body with one sphere at zero offset.
+//!
+//! Besides its geometry a sphere carries a snapshot of its body's motion at the sphere
+//! (centre velocity, angular velocity, masses, lever from the centre of mass): what the
+//! contact stage needs, in one record, so that a contact reads two spheres and no bodies. The
+//! world refreshes it whenever a body moves or is set ([`Sphere::sync_motion`]); it is derived
+//! state, not hashed in the digest.
 
 use crate::material::MaterialId;
 use crate::num::{Scalar, Vec3};
@@ -8,8 +14,18 @@ use crate::num::{Scalar, Vec3};
 pub struct Sphere<S> {
     /// World position of the sphere centre, mm (updated from its body each step).
     pub position: Vec3<S>,
+    /// Velocity of the sphere centre, mm/ms (= m/s): v + ω × arm of its body.
+    pub velocity: Vec3<S>,
+    /// Angular velocity of its body, rad/ms.
+    pub spin: Vec3<S>,
+    /// Centre minus its body's centre of mass, world frame, mm (zero for a free sphere).
+    pub arm: Vec3<S>,
     /// Radius, mm.
     pub radius: S,
+    /// Mass of its body, g.
+    pub mass: S,
+    /// Inverse mass of its body, 1/g (zero for a kinematic body).
+    pub inv_mass: S,
     /// Offset of the centre from the body's centre of mass, body frame, mm.
     pub offset: Vec3<S>,
     /// Owning body id.
@@ -47,6 +63,22 @@ impl SphereSpec {
 }
 
 impl<S: Scalar> Sphere<S> {
+    /// Refresh the motion snapshot from the sphere's body `b` (its position must be current):
+    /// arm = centre − centre of mass, velocity = v + ω × arm.
+    #[inline]
+    pub fn sync_motion(&mut self, b: &super::Body<S>) {
+        if b.is_clump {
+            self.arm = self.position - b.position;
+            self.velocity = b.velocity + b.angular_velocity.cross(self.arm);
+        } else {
+            self.arm = Vec3::ZERO;
+            self.velocity = b.velocity;
+        }
+        self.spin = b.angular_velocity;
+        self.mass = b.mass;
+        self.inv_mass = b.inv_mass;
+    }
+
     /// Radius in m.
     pub fn radius_m(&self) -> f64 {
         self.radius.to_f64() / crate::units::LENGTH_M_TO_MM

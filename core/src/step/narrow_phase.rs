@@ -29,7 +29,7 @@ use crate::bond::Bond;
 use crate::contact::fused::{evaluate_fast, FusedContact, FusedLoad, Geometry};
 use crate::contact::{ContactKinematics, ContactState, EffectHistory, NeighbourEntry};
 use crate::error::{Other, Stage, StepError};
-use crate::num::{Scalar, Vec3};
+use crate::num::{Envelope, Scalar, Vec3};
 use crate::pair::PairParams;
 use crate::wall::{Wall, MAX_WALLS};
 use core::ops::Range;
@@ -89,9 +89,27 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         let with_effects = !self.effects.is_empty();
         for i in self.spheres.clone() {
             let range = sh.offsets[i] as usize - base..sh.offsets[i + 1] as usize - base;
+            let si = &sh.spheres[i];
             for e in range {
                 let entry = self.entries[e];
                 let key = key_of(entry.partner);
+                if !with_effects {
+                    let fast = if is_wall(key) {
+                        self.wall_fast(sh, si, key, e, &entry)
+                    } else {
+                        self.sphere_fast(sh, si, key as usize, e, &entry)
+                    };
+                    match fast {
+                        Fast::Done => continue,
+                        Fast::Apart => {
+                            if entry.partner != key || entry.delta != Vec3::ZERO {
+                                self.write(e, key, &ContactState::default(), false);
+                            }
+                            continue;
+                        }
+                        Fast::General => {}
+                    }
+                }
                 let state = ContactState::join(&entry, with_effects.then(|| &self.effects[e]));
                 let found = if is_wall(key) {
                     wall_touch(sh, i, key, state)?
@@ -122,6 +140,138 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
             }
         }
         Ok(())
+    }
+
+    /// The fast path of a sphere–sphere entry (owner `si`, partner sphere `j`): the touching
+    /// test and, for a pair that uses only the base law, the fused law
+    /// ([`evaluate_fast`]) on the spheres' motion snapshots, in [`Scalar::Fast`] arithmetic.
+    /// The centre difference cannot overflow: a listed pair was within reach plus the skin
+    /// at the last rebuild and has moved less than the skin since. Anything else (optional
+    /// effects, bonds, an undefined pair, a contact outside the fused law's envelope) goes to
+    /// the general path, which takes the same touching decision (the same rounded |d|² and
+    /// reach²).
+    #[inline(always)]
+    fn sphere_fast(
+        &mut self,
+        sh: &Shared<'_, S>,
+        si: &Sphere<S>,
+        j: usize,
+        e: usize,
+        entry: &NeighbourEntry<S>,
+    ) -> Fast {
+        let sj = &sh.spheres[j];
+        let f = S::to_fast;
+        let rs = f(si.radius) + f(sj.radius);
+        if !rs.within(REACH_SQUARE_BITS) {
+            // rs² could leave the range: the general path checks every operation.
+            return Fast::General;
+        }
+        let d = sj.position.map(f) - si.position.map(f);
+        if !(d.x.abs() < rs && d.y.abs() < rs && d.z.abs() < rs) {
+            return Fast::Apart;
+        }
+        let d2 = d.norm2();
+        if d2 >= rs * rs {
+            return Fast::Apart;
+        }
+        if !sh.bonded.is_empty() {
+            return Fast::General;
+        }
+        let pair = &sh.pairs[si.material as usize][sj.material as usize];
+        if !pair.fused.eligible {
+            return Fast::General;
+        }
+        // R* = RiRj/(Ri+Rj) and m* = mimj/(mi+mj), halved exactly when equal.
+        let r_star = if si.radius == sj.radius {
+            f(si.radius) * S::Fast::HALF
+        } else {
+            f(si.radius) * f(sj.radius) / rs
+        };
+        let m_star = if si.mass == sj.mass && si.inv_mass == sj.inv_mass {
+            f(si.mass) * S::Fast::HALF
+        } else {
+            S::Fast::ONE / (f(si.inv_mass) + f(sj.inv_mass))
+        };
+        let arm = |s: &Sphere<S>| (s.arm != Vec3::ZERO).then(|| s.arm.map(f));
+        let c = FusedContact {
+            geometry: Geometry::Spheres {
+                d,
+                d2,
+                r_j: f(sj.radius),
+            },
+            r_i: f(si.radius),
+            r_star,
+            m_star,
+            v_centres: sj.velocity.map(f) - si.velocity.map(f),
+            spin_i: si.spin.map(f),
+            spin_j: sj.spin.map(f),
+            offset_i: arm(si),
+            offset_j: arm(sj),
+            dt: f(sh.dt),
+        };
+        let mut delta = entry.delta.map(f);
+        let Some(load) = evaluate_fast(&c, &pair.fused.fast(), &mut delta) else {
+            return Fast::General;
+        };
+        self.apply(&load_of(&load), si.body as usize, Some(sj.body as usize));
+        self.entries[e] = NeighbourEntry {
+            partner: j as u32 | LIVE_FLAG,
+            delta: delta.map(S::from_fast),
+        };
+        Fast::Done
+    }
+
+    /// The fast path of a sphere–wall entry (see [`ContactPart::sphere_fast`]): the wall
+    /// face's geometry (checked arithmetic, as in the general path), then the fused law.
+    #[inline(always)]
+    fn wall_fast(
+        &mut self,
+        sh: &Shared<'_, S>,
+        si: &Sphere<S>,
+        key: u32,
+        e: usize,
+        entry: &NeighbourEntry<S>,
+    ) -> Fast {
+        let wi = ((key & !crate::contact::WALL_PARTNER_FLAG) >> 4) as usize;
+        let w = &sh.walls[wi];
+        let Some((normal, overlap)) = w.shape.contact(key & 0xF, si.position, si.radius) else {
+            return Fast::Apart;
+        };
+        let pair = &sh.pairs[si.material as usize][w.material as usize];
+        if !pair.fused.eligible {
+            return Fast::General;
+        }
+        let f = S::to_fast;
+        let c = FusedContact {
+            geometry: Geometry::Wall {
+                normal: normal.map(f),
+                overlap: f(overlap),
+            },
+            r_i: f(si.radius),
+            r_star: f(si.radius),
+            m_star: f(si.mass),
+            v_centres: w.velocity.map(f) - si.velocity.map(f),
+            spin_i: si.spin.map(f),
+            spin_j: Vec3::ZERO,
+            offset_i: (si.arm != Vec3::ZERO).then(|| si.arm.map(f)),
+            offset_j: None,
+            dt: f(sh.dt),
+        };
+        let mut delta = entry.delta.map(f);
+        let Some(load) = evaluate_fast(&c, &pair.fused.fast(), &mut delta) else {
+            return Fast::General;
+        };
+        let load = load_of(&load);
+        self.apply(&load, si.body as usize, None);
+        let wf = &mut self.wall_force[wi];
+        S::sum_add(&mut wf[0], load.force.x);
+        S::sum_add(&mut wf[1], load.force.y);
+        S::sum_add(&mut wf[2], load.force.z);
+        self.entries[e] = NeighbourEntry {
+            partner: key | LIVE_FLAG,
+            delta: delta.map(S::from_fast),
+        };
+        Fast::Done
     }
 
     /// Store the history and live flag of entry `e`.
@@ -209,6 +359,20 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
             a.add_roll(load.roll_j);
         }
     }
+}
+
+/// The fast path's sum of radii stays below 2^15 mm, so that |d|² and rs² (< 3·2^30 mm²)
+/// cannot leave the Q32.32 range.
+const REACH_SQUARE_BITS: i32 = 15;
+
+/// What the fast path did with an entry.
+enum Fast {
+    /// Evaluated, loads applied, history stored.
+    Done,
+    /// Not touching.
+    Apart,
+    /// Left to the general path.
+    General,
 }
 
 /// Marks a lane whose partner is a wall (`Lane::body_j`).

@@ -230,7 +230,6 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
             return Ok(());
         }
         let skin = max_radius / S::ONE.mul_int(SKIN_DIVISOR);
-        REBUILDS.fetch_add(1, core::sync::atomic::Ordering::Relaxed);
         self.rebuild(spheres, walls, max_radius, skin)?;
         self.current ^= 1;
         self.listed = spheres.len();
@@ -340,7 +339,6 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
             }
             new_offsets[i + 1] = out.at as u32;
         }
-        ENTRIES.fetch_add(out.at as u64, core::sync::atomic::Ordering::Relaxed);
         Ok(())
     }
 }
@@ -415,8 +413,3 @@ fn step_in(c: u32, d: i32, dim: u32) -> Option<u32> {
 pub fn is_wall(key: u32) -> bool {
     key & WALL_PARTNER_FLAG != 0
 }
-
-/// temp
-pub static REBUILDS: core::sync::atomic::AtomicU64 = core::sync::atomic::AtomicU64::new(0);
-/// temp
-pub static ENTRIES: core::sync::atomic::AtomicU64 = core::sync::atomic::AtomicU64::new(0);

@@ -172,13 +172,15 @@ impl<S: Scalar> World<'_, S> {
             ..Body::default()
         };
         let id = self.n_bodies;
-        self.spheres[self.n_spheres as usize] = Sphere {
+        let mut sphere = Sphere {
             position: pos,
             radius,
-            offset: Vec3::ZERO,
             body: id,
             material: spec.material.0,
+            ..Sphere::default()
         };
+        sphere.sync_motion(&body);
+        self.spheres[self.n_spheres as usize] = sphere;
         self.bodies[id as usize] = body;
         self.n_spheres += 1;
         self.n_bodies += 1;
@@ -289,6 +291,7 @@ impl<S: Scalar> World<'_, S> {
                     offset: q3(off, LENGTH_M_TO_MM, "clump sphere offset")?,
                     body: id,
                     material: s.material.0,
+                    ..Sphere::default()
                 })
                 .map_err(|_| SetupError::Capacity {
                     kind: CapacityKind::ClumpSpheres,
@@ -318,7 +321,9 @@ impl<S: Scalar> World<'_, S> {
             ..Body::default()
         };
         for (k, s) in new_spheres.iter().enumerate() {
-            self.spheres[first as usize + k] = *s;
+            let mut s = *s;
+            s.sync_motion(&body);
+            self.spheres[first as usize + k] = s;
         }
         self.bodies[id as usize] = body;
         self.n_spheres += new_spheres.len() as u32;
@@ -373,6 +378,7 @@ impl<S: Scalar> World<'_, S> {
         let b = &mut self.bodies[id.0 as usize];
         b.velocity = v;
         b.angular_velocity = w;
+        self.sync_spheres_of(id.0 as usize);
         Ok(())
     }
 
@@ -406,7 +412,17 @@ impl<S: Scalar> World<'_, S> {
         let b = &mut self.bodies[id.0 as usize];
         b.inv_mass = S::ZERO;
         b.inv_inertia = Vec3::ZERO;
+        self.sync_spheres_of(id.0 as usize);
         Ok(())
+    }
+
+    /// Refresh the motion snapshot of body `b`'s spheres ([`Sphere::sync_motion`]).
+    fn sync_spheres_of(&mut self, b: usize) {
+        let body = &self.bodies[b];
+        let first = body.first_sphere as usize;
+        for s in &mut self.spheres[first..first + body.sphere_count as usize] {
+            s.sync_motion(body);
+        }
     }
 }
 

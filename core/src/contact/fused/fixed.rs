@@ -80,6 +80,13 @@ fn mul_sub_wide(a: i64, b: i64, c: i64, d: i64, s: u32) -> i64 {
     ((a as i128 * b as i128 - c as i128 * d as i128 + (1i128 << (s - 1))) >> s) as i64
 }
 
+/// `[f(0), f(1), f(2)]`, written out so that it always inlines (`core::array::from_fn` did
+/// not, in the contact loop).
+#[inline(always)]
+fn each3(f: impl Fn(usize) -> i64) -> [i64; 3] {
+    [f(0), f(1), f(2)]
+}
+
 /// Largest |component| bound: |x| | |y| | |z| (below 2^k iff every component is).
 #[inline(always)]
 fn magnitude(v: [i64; 3]) -> u64 {
@@ -119,6 +126,24 @@ fn sqrt_coarse(v: u128) -> i64 {
     // (v is Q.64): the same integer.
     let root_x = ((x >> 32) * rsqrt_q30(x)) >> 30;
     scale_pow2(root_x as i64, s / 2)
+}
+
+/// `v·target/√v2` for v2 = |u|² (Q.64) of some vector u: `v` rescaled by the ratio of
+/// `target` (Q.32, < 2^47) to |u|, through one reciprocal root (good to about 2^-28).
+#[inline(always)]
+fn scale_by_ratio(v: [i64; 3], target: i64, v2: u128) -> [i64; 3] {
+    let (x, s) = normalise(v2);
+    let y = rsqrt_q30(x) as i128;
+    // 1/√v2 = y·2^(−62 − s/2) (v2 in raw units squared); v·target < 2^93, times y < 2^124.
+    let sh = 62 + s / 2;
+    let sh = sh.clamp(1, 126) as u32;
+    v.map(|c| ((c as i128 * target as i128 * y + (1i128 << (sh - 1))) >> sh) as i64)
+}
+
+/// `v` rescaled to length `target` (Q.32), where v2 = |v|² (Q.64).
+#[inline(always)]
+fn scale_to_length(v: [i64; 3], v2: u128, target: i64) -> [i64; 3] {
+    scale_by_ratio(v, target, v2)
 }
 
 /// Centre distance |d| (Q.32, correctly rounded) and the unit normal d/|d| (Q.30) from one
@@ -222,9 +247,9 @@ pub fn evaluate(
     // These products stay 128-bit: a stiff, damped contact turns a velocity error of 1e-7
     // into a force error of 1e-5 of its force.
     let spin: [i64; 3] = if li == lj {
-        core::array::from_fn(|k| mul_wide(wi[k] + wj[k], li, STATE))
+        each3(|k| mul_wide(wi[k] + wj[k], li, STATE))
     } else {
-        core::array::from_fn(|k| {
+        each3(|k| {
             ((wi[k] as i128 * li as i128 + wj[k] as i128 * lj as i128 + HALF_UNIT) >> STATE) as i64
         })
     };
@@ -237,7 +262,7 @@ pub fn evaluate(
         v[2] - mul_sub_wide(spin[0], n30[1], spin[1], n30[0], UNIT),
     ];
     let vn = dot_wide(vc, n30, UNIT);
-    let vt: [i64; 3] = core::array::from_fn(|k| vc[k] - mul_wide(n30[k], vn, UNIT));
+    let vt: [i64; 3] = each3(|k| vc[k] - mul_wide(n30[k], vn, UNIT));
 
     // Contact radius a = √(R*α) and √(a·m*) (Q.32).
     let a = sqrt_coarse(r_star as u128 * alpha as u128);
@@ -259,14 +284,14 @@ pub fn evaluate(
     // Tangential: history projected on the tangent plane plus vt·dt, spring and damping.
     let dn = dot_wide(d0, n30, UNIT);
     let mut d1: [i64; 3] =
-        core::array::from_fn(|k| d0[k] - mul_wide(n30[k], dn, UNIT) + mul_wide(vt[k], dt, STATE));
+        each3(|k| d0[k] - mul_wide(n30[k], dn, UNIT) + mul_wide(vt[k], dt, STATE));
     if magnitude(d1) >= DELTA_RAW {
         return None;
     }
     let st = mul_wide(kt, a, STATE);
-    let spring: [i64; 3] = core::array::from_fn(|k| mul_wide(st, d1[k], STATE));
+    let spring: [i64; 3] = each3(|k| mul_wide(st, d1[k], STATE));
     let damp_t = mul_wide(ct, root_am, STATE);
-    let mut f_t: [i64; 3] = core::array::from_fn(|k| -(spring[k] + mul_wide(damp_t, vt[k], STATE)));
+    let mut f_t: [i64; 3] = each3(|k| -(spring[k] + mul_wide(damp_t, vt[k], STATE)));
     if magnitude(f_t) >= FORCE_RAW {
         return None;
     }
@@ -280,28 +305,27 @@ pub fn evaluate(
             f_t = [0; 3];
             d1 = [0; 3];
         } else {
-            let norm = isqrt_round_u128(f2 as u128) as i64;
-            f_t = f_t.map(|x| ((x as i128 * limit as i128) / norm as i128) as i64);
+            f_t = scale_to_length(f_t, f2 as u128, limit);
             let s2: i128 = spring.iter().map(|&x| x as i128 * x as i128).sum();
-            let stretch = isqrt_round_u128(s2 as u128) as i64;
-            if stretch > limit {
-                d1 = d1.map(|x| ((x as i128 * limit as i128) / stretch as i128) as i64);
+            if s2 > limit as i128 * limit as i128 {
+                // δt·μs·Fn/(St|δt|) = δt·limit/|spring|.
+                d1 = scale_by_ratio(d1, limit, s2 as u128);
             }
         }
     }
 
     // Loads: force on j, torques about each centre of mass, CDT rolling magnitudes (eq. (7)).
-    let force: [i64; 3] = core::array::from_fn(|k| mul_wide(n30[k], f_n, UNIT) + f_t[k]);
+    let force: [i64; 3] = each3(|k| mul_wide(n30[k], f_n, UNIT) + f_t[k]);
     let tau = [
         mul_sub_wide(n30[1], f_t[2], n30[2], f_t[1], UNIT),
         mul_sub_wide(n30[2], f_t[0], n30[0], f_t[2], UNIT),
         mul_sub_wide(n30[0], f_t[1], n30[1], f_t[0], UNIT),
     ];
-    let mut torque_i: [i64; 3] = core::array::from_fn(|k| mul_wide(tau[k], li, STATE));
+    let mut torque_i: [i64; 3] = each3(|k| mul_wide(tau[k], li, STATE));
     let mut torque_j: [i64; 3] = if li == lj {
         torque_i.map(|x| -x)
     } else {
-        core::array::from_fn(|k| -mul_wide(tau[k], lj, STATE))
+        each3(|k| -mul_wide(tau[k], lj, STATE))
     };
     let cross_force = |o: [i64; 3]| -> [i64; 3] {
         [
@@ -312,11 +336,11 @@ pub fn evaluate(
     };
     if let Some(o) = c.offset_i {
         let t = cross_force(raw3(o));
-        torque_i = core::array::from_fn(|k| torque_i[k] + t[k]);
+        torque_i = each3(|k| torque_i[k] + t[k]);
     }
     if let Some(o) = c.offset_j {
         let t = cross_force(raw3(o));
-        torque_j = core::array::from_fn(|k| torque_j[k] + t[k]);
+        torque_j = each3(|k| torque_j[k] + t[k]);
     }
     let (mut roll_i, mut roll_j) = (0, 0);
     let mu_r = p.rolling_friction.raw();
@@ -327,8 +351,7 @@ pub fn evaluate(
         let lever = |len: i64, offset: Option<Vec3<FxFast>>, sign: i64| match offset {
             Some(o) => {
                 let o = raw3(o);
-                let arm: [i64; 3] =
-                    core::array::from_fn(|k| o[k] + sign * mul_wide(n30[k], len, UNIT));
+                let arm: [i64; 3] = each3(|k| o[k] + sign * mul_wide(n30[k], len, UNIT));
                 sqrt_coarse(arm.iter().map(|&x| (x as i128 * x as i128) as u128).sum())
             }
             None => len,

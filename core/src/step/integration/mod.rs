@@ -13,20 +13,23 @@
 //! the ω component along ω̂ goes to zero at most, never negative: the torque never reverses ω
 //! within a step (DESIGN §2).
 //!
-//! Single spheres move in the unchecked arithmetic of [`Scalar::Fast`] while their loads and
-//! velocities lie inside bounds that exclude overflow ([`move_sphere_fast`]); others, and
-//! clumps, in the checked arithmetic.
+//! Single spheres move in unchecked arithmetic while their loads and velocities lie inside
+//! bounds that exclude overflow ([`single_sphere`]); others, and clumps, in the checked
+//! arithmetic.
 //!
 //! The stage runs in parts over disjoint body ranges ([`IntegratePart`]). Each body first
 //! gathers its force sums from every accumulator arena of the contact stage (and clears them
 //! for the next step), then moves. A kinematic body (inverse mass zero) keeps its velocity:
 //! no contact force and no gravity.
 
+mod single_sphere;
+
 use super::parts::MAX_PARTS;
 use crate::body::{Body, BodyForce, Sphere};
 use crate::error::{Other, Stage, StepError};
 use crate::num::{Envelope, Scalar, Vec3};
 use core::ops::Range;
+use single_sphere::move_sphere;
 
 /// One part of the integration stage: a range of bodies and their spheres.
 pub(crate) struct IntegratePart<'w, S: Scalar> {
@@ -74,14 +77,17 @@ impl<S: Scalar> IntegratePart<'_, S> {
             let sums = self.take_sums(id);
             let b = &mut self.bodies[k];
             if !b.is_clump {
-                if let Some(m) = move_sphere_fast(b, &sums, dt, g) {
+                if let Some(m) = move_sphere(b, &sums, dt, g) {
                     b.velocity = m.velocity;
                     b.position = m.position;
                     b.angular_velocity = m.angular_velocity;
                     b.force = m.force;
                     b.torque = m.torque;
                     b.roll_torque = m.roll;
-                    self.spheres[b.first_sphere as usize - self.first_sphere].position = m.position;
+                    let s = &mut self.spheres[b.first_sphere as usize - self.first_sphere];
+                    s.position = m.position;
+                    s.velocity = m.velocity;
+                    s.spin = m.angular_velocity;
                     max_disp = max_disp.max(m.l1_displacement);
                     continue;
                 }
@@ -115,6 +121,7 @@ impl<S: Scalar> IntegratePart<'_, S> {
                 }
                 b.angular_velocity = w;
                 self.spheres[first].position = b.position;
+                self.spheres[first].sync_motion(b);
                 max_disp = max_disp.max(dx.l1_norm());
             } else {
                 let rot = b.orientation.to_mat3();
@@ -144,7 +151,8 @@ impl<S: Scalar> IntegratePart<'_, S> {
                     let p = b.position + rot.mul_vec(s.offset);
                     max_disp = max_disp.max((p - s.position).l1_norm());
                     s.position = p;
-                    if !s.position.is_valid() {
+                    s.sync_motion(b);
+                    if !(s.position.is_valid() & s.velocity.is_valid()) {
                         return Err(overflow(id));
                     }
                 }
@@ -159,128 +167,6 @@ impl<S: Scalar> IntegratePart<'_, S> {
         self.max_disp = max_disp;
         Ok(())
     }
-}
-
-/// Magnitudes inside which [`move_sphere_fast`] cannot overflow: powers of two of
-/// accelerations (mm/ms²) and velocities (mm/ms, rad/ms) …
-const ACCELERATION_BITS: i32 = 24;
-/// … of velocities at the start and end of the step (mm/ms, rad/ms) …
-const VELOCITY_BITS: i32 = 24;
-/// … of positions (mm) …
-const POSITION_BITS: i32 = 29;
-/// … of the time step (ms) …
-const TIMESTEP_BITS: i32 = 4;
-/// … of force and torque sums (N, N·mm) …
-const LOAD_BITS: i32 = 30;
-/// … of the inverse mass and inertia (1/g, 1/(g·mm²)) …
-const INVERSE_BITS: i32 = 30;
-/// … of gravity (mm/ms²) …
-const GRAVITY_BITS: i32 = 16;
-/// … and of the mass (g), for the reported weight.
-const MASS_BITS: i32 = 12;
-
-/// The new state of a single-sphere body.
-struct SphereMove<S> {
-    velocity: Vec3<S>,
-    position: Vec3<S>,
-    angular_velocity: Vec3<S>,
-    force: Vec3<S>,
-    torque: Vec3<S>,
-    roll: S,
-    l1_displacement: S,
-}
-
-/// One step of a single-sphere body (module docs) in the unchecked [`Scalar::Fast`]
-/// arithmetic, or `None` when a magnitude lies outside the bounds above (then the checked
-/// arithmetic moves the body and reports any overflow). Each bound is tested once for a whole
-/// vector ([`Envelope::magnitude3`]). Inside them: a = F/m < 2^24 and (a + g)·dt < 2^28
-/// (checked products), the new velocity is checked below 2^24, so v·dt < 2^28, the new
-/// position < 2^29 + 2^28 and the L1 displacement < 2^30; the spin increment T/I·dt < 2^28
-/// and the rolling cap never exceeds ω·ω̂ ≤ |ω|.
-#[inline(always)]
-fn move_sphere_fast<S: Scalar>(
-    b: &Body<S>,
-    sums: &BodyForce<S>,
-    dt: S,
-    g: Vec3<S>,
-) -> Option<SphereMove<S>> {
-    type F<S> = <S as Scalar>::Fast;
-    let fast3 = |v: Vec3<S>| v.map(S::to_fast);
-    let within3 = |v: Vec3<F<S>>, bits| F::<S>::magnitude3(v).within(bits);
-    let (force, torque, roll) = (
-        fast3(sums.force()),
-        fast3(sums.torque()),
-        sums.roll().to_fast(),
-    );
-    let (vel, pos, w0) = (
-        fast3(b.velocity),
-        fast3(b.position),
-        fast3(b.angular_velocity),
-    );
-    let (dt, g) = (dt.to_fast(), fast3(g));
-    let (inv_m, inv_i, mass) = (
-        b.inv_mass.to_fast(),
-        b.inv_inertia.x.to_fast(),
-        b.mass.to_fast(),
-    );
-    let inputs_in = within3(force, LOAD_BITS)
-        & within3(torque, LOAD_BITS)
-        & roll.within(LOAD_BITS)
-        & within3(vel, VELOCITY_BITS)
-        & within3(w0, VELOCITY_BITS)
-        & within3(pos, POSITION_BITS)
-        & within3(g, GRAVITY_BITS)
-        & dt.within(TIMESTEP_BITS)
-        & inv_m.within(INVERSE_BITS)
-        & inv_i.within(INVERSE_BITS)
-        & mass.within(MASS_BITS);
-    if !inputs_in {
-        return None;
-    }
-    // The three products with an inverse mass or inertia are tested exactly
-    // (`mul_within` sees the whole product), since a light body has a large inverse.
-    let scaled = |v: Vec3<F<S>>, s: F<S>| {
-        let (x, ox) = v.x.mul_within(s, ACCELERATION_BITS);
-        let (y, oy) = v.y.mul_within(s, ACCELERATION_BITS);
-        let (z, oz) = v.z.mul_within(s, ACCELERATION_BITS);
-        (Vec3::new(x, y, z), ox & oy & oz)
-    };
-    let (acc, acc_in) = scaled(force, inv_m);
-    let (spin_acc, spin_in) = scaled(torque, inv_i);
-    let (roll_acc, roll_in) = roll.mul_within(inv_i, ACCELERATION_BITS);
-    if !(acc_in & spin_in & roll_in) {
-        return None;
-    }
-    // A kinematic body (inverse mass zero) keeps its velocity: no contact force, no gravity.
-    let velocity = if inv_m != F::<S>::ZERO {
-        vel + (acc + g).scale(dt)
-    } else {
-        vel
-    };
-    if !within3(velocity, VELOCITY_BITS) {
-        return None;
-    }
-    let dx = velocity.scale(dt);
-    let mut w = w0 + spin_acc.scale(dt);
-    if roll > F::<S>::ZERO {
-        if let Some(hat) = F::<S>::unit3(w0) {
-            let along = w.dot(hat);
-            if along > F::<S>::ZERO {
-                w -= hat.scale((roll_acc * dt).min(along));
-            }
-        }
-    }
-    let back = |v: Vec3<F<S>>| v.map(S::from_fast);
-    Some(SphereMove {
-        velocity: back(velocity),
-        position: back(pos + dx),
-        angular_velocity: back(w),
-        // m < 2^12 and |g| < 2^16 keep m·g < 2^28 before the sum with |F| < 2^30.
-        force: back(force + g.scale(mass)),
-        torque: back(torque),
-        roll: S::from_fast(roll),
-        l1_displacement: S::from_fast(dx.l1_norm()),
-    })
 }
 
 /// Unit vector along `v`, or `None` for the zero vector (accurate even for tiny ω, so rolling

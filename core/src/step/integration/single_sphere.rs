@@ -1,0 +1,321 @@
+//! One step of a single-sphere body in unchecked arithmetic, inside bounds that exclude
+//! overflow (the module docs of [`super`] give the integrator itself).
+//!
+//! [`move_sphere`] takes the raw-integer path for Q32.32 fixed point ([`move_sphere_q32`]):
+//! twelve 128-bit products, each bound tested once per vector (|x| | |y| | |z| against a power
+//! of two), the unit spin vector from [`Envelope::unit3`]. Floating point takes the same
+//! arithmetic written on [`Scalar::Fast`]. Outside the bounds it returns `None`, and the
+//! checked arithmetic moves the body and reports any overflow.
+
+use crate::body::{Body, BodyForce};
+use crate::num::{Envelope, FxFast, Scalar, Vec3};
+
+/// One step of single-sphere body `b` under its force sums, or `None` outside the bounds.
+#[inline(always)]
+pub(super) fn move_sphere<S: Scalar>(
+    b: &Body<S>,
+    sums: &BodyForce<S>,
+    dt: S,
+    g: Vec3<S>,
+) -> Option<SphereMove<S>> {
+    if !S::Q32_32 {
+        return move_sphere_generic(b, sums, dt, g);
+    }
+    let raw = |x: S| x.to_bits() as i64;
+    let raw3 = |v: Vec3<S>| [raw(v.x), raw(v.y), raw(v.z)];
+    let back = |x: i64| S::from_bits(x as u64);
+    let back3 = |v: [i64; 3]| Vec3::new(back(v[0]), back(v[1]), back(v[2]));
+    let m = move_sphere_q32(&Q32Sphere {
+        force: raw3(sums.force()),
+        torque: raw3(sums.torque()),
+        roll: raw(sums.roll()),
+        velocity: raw3(b.velocity),
+        position: raw3(b.position),
+        spin: raw3(b.angular_velocity),
+        inv_mass: raw(b.inv_mass),
+        inv_inertia: raw(b.inv_inertia.x),
+        mass: raw(b.mass),
+        dt: raw(dt),
+        gravity: raw3(g),
+    })?;
+    Some(SphereMove {
+        velocity: back3(m.velocity),
+        position: back3(m.position),
+        angular_velocity: back3(m.spin),
+        force: back3(m.force),
+        torque: back3(m.torque),
+        roll: back(m.roll),
+        l1_displacement: back(m.l1),
+    })
+}
+
+/// Raw Q32.32 bounds (2^32 × the bounds above): loads < 2^30 N, …
+const LOAD_RAW: u64 = 1 << (32 + LOAD_BITS);
+/// … velocities < 2^24 mm/ms and rad/ms, and accelerations < 2^24 mm/ms², …
+const VELOCITY_RAW: u64 = 1 << (32 + VELOCITY_BITS);
+/// … positions < 2^29 mm, …
+const POSITION_RAW: u64 = 1 << (32 + POSITION_BITS);
+/// … time step < 2^4 ms, …
+const TIMESTEP_RAW: i64 = 1 << (32 + TIMESTEP_BITS);
+/// … gravity < 2^16 mm/ms², …
+const GRAVITY_RAW: u64 = 1 << (32 + GRAVITY_BITS);
+/// … mass < 2^12 g.
+const MASS_RAW: i64 = 1 << (32 + MASS_BITS);
+
+/// A single-sphere body and its loads, raw Q32.32.
+struct Q32Sphere {
+    force: [i64; 3],
+    torque: [i64; 3],
+    roll: i64,
+    velocity: [i64; 3],
+    position: [i64; 3],
+    spin: [i64; 3],
+    inv_mass: i64,
+    inv_inertia: i64,
+    mass: i64,
+    dt: i64,
+    gravity: [i64; 3],
+}
+
+/// The moved body, raw Q32.32.
+struct Q32Move {
+    velocity: [i64; 3],
+    position: [i64; 3],
+    spin: [i64; 3],
+    force: [i64; 3],
+    torque: [i64; 3],
+    roll: i64,
+    l1: i64,
+}
+
+/// |x| | |y| | |z|: below 2^k iff every component is.
+#[inline(always)]
+fn magnitude(v: [i64; 3]) -> u64 {
+    v[0].unsigned_abs() | v[1].unsigned_abs() | v[2].unsigned_abs()
+}
+
+/// a·b in Q.32, rounded to nearest, as an i128 (not yet range-checked).
+#[inline(always)]
+fn mul_q32(a: i64, b: i64) -> i128 {
+    (a as i128 * b as i128 + (1 << 31)) >> 32
+}
+
+/// `v·s` in Q.32 if every component stays below `bound` (raw), else `None`.
+#[inline(always)]
+fn scale_within(v: [i64; 3], s: i64, bound: u64) -> Option<[i64; 3]> {
+    let p = [mul_q32(v[0], s), mul_q32(v[1], s), mul_q32(v[2], s)];
+    let m = p[0].unsigned_abs() | p[1].unsigned_abs() | p[2].unsigned_abs();
+    (m < bound as u128).then(|| [p[0] as i64, p[1] as i64, p[2] as i64])
+}
+
+/// The step of [`move_sphere`] on raw Q32.32 integers. Inside the bounds: |a| < 2^24,
+/// |a + g| < 2^25 and dt < 2^4 keep (a + g)·dt < 2^29; the new velocity is checked below
+/// 2^24, so |v·dt| < 2^28 and the new position stays below 2^30; the spin increment is below
+/// 2^28 and the rolling cap below |ω|; m·g < 2^28.
+#[inline(always)]
+fn move_sphere_q32(s: &Q32Sphere) -> Option<Q32Move> {
+    let inputs_in = ((magnitude(s.force) | magnitude(s.torque) | s.roll.unsigned_abs()) < LOAD_RAW)
+        & ((magnitude(s.velocity) | magnitude(s.spin)) < VELOCITY_RAW)
+        & (magnitude(s.position) < POSITION_RAW)
+        & (magnitude(s.gravity) < GRAVITY_RAW)
+        & (s.dt > 0)
+        & (s.dt < TIMESTEP_RAW)
+        & (s.mass >= 0)
+        & (s.mass < MASS_RAW)
+        & (s.inv_mass >= 0)
+        & (s.inv_inertia >= 0)
+        & (s.roll >= 0);
+    if !inputs_in {
+        return None;
+    }
+    let acc = scale_within(s.force, s.inv_mass, VELOCITY_RAW)?;
+    let spin_acc = scale_within(s.torque, s.inv_inertia, VELOCITY_RAW)?;
+    let roll_acc = mul_q32(s.roll, s.inv_inertia);
+    if roll_acc >= VELOCITY_RAW as i128 {
+        return None;
+    }
+    let dt = s.dt;
+    let step = |x: i64| mul_q32(x, dt) as i64;
+    // A kinematic body (inverse mass zero) keeps its velocity: no contact force, no gravity.
+    let velocity = if s.inv_mass != 0 {
+        let v = [
+            s.velocity[0] + step(acc[0] + s.gravity[0]),
+            s.velocity[1] + step(acc[1] + s.gravity[1]),
+            s.velocity[2] + step(acc[2] + s.gravity[2]),
+        ];
+        if magnitude(v) >= VELOCITY_RAW {
+            return None;
+        }
+        v
+    } else {
+        s.velocity
+    };
+    let dx = velocity.map(step);
+    let mut spin = [
+        s.spin[0] + step(spin_acc[0]),
+        s.spin[1] + step(spin_acc[1]),
+        s.spin[2] + step(spin_acc[2]),
+    ];
+    if s.roll > 0 {
+        let w0 = Vec3::new(
+            FxFast::from_raw(s.spin[0]),
+            FxFast::from_raw(s.spin[1]),
+            FxFast::from_raw(s.spin[2]),
+        );
+        if let Some(hat) = FxFast::unit3(w0) {
+            let hat = [hat.x.raw(), hat.y.raw(), hat.z.raw()];
+            let along = ((spin[0] as i128 * hat[0] as i128
+                + spin[1] as i128 * hat[1] as i128
+                + spin[2] as i128 * hat[2] as i128
+                + (1 << 31))
+                >> 32) as i64;
+            if along > 0 {
+                let dec = step(roll_acc as i64).min(along);
+                spin = [
+                    spin[0] - mul_q32(hat[0], dec) as i64,
+                    spin[1] - mul_q32(hat[1], dec) as i64,
+                    spin[2] - mul_q32(hat[2], dec) as i64,
+                ];
+            }
+        }
+    }
+    Some(Q32Move {
+        velocity,
+        position: [
+            s.position[0] + dx[0],
+            s.position[1] + dx[1],
+            s.position[2] + dx[2],
+        ],
+        spin,
+        force: [
+            s.force[0] + mul_q32(s.gravity[0], s.mass) as i64,
+            s.force[1] + mul_q32(s.gravity[1], s.mass) as i64,
+            s.force[2] + mul_q32(s.gravity[2], s.mass) as i64,
+        ],
+        torque: s.torque,
+        roll: s.roll,
+        l1: (dx[0].abs() + dx[1].abs() + dx[2].abs()),
+    })
+}
+
+/// Magnitudes inside which the single-sphere step cannot overflow: powers of two of
+/// accelerations (mm/ms²) and velocities (mm/ms, rad/ms) …
+const ACCELERATION_BITS: i32 = 24;
+/// … of velocities at the start and end of the step (mm/ms, rad/ms) …
+const VELOCITY_BITS: i32 = 24;
+/// … of positions (mm) …
+const POSITION_BITS: i32 = 29;
+/// … of the time step (ms) …
+const TIMESTEP_BITS: i32 = 4;
+/// … of force and torque sums (N, N·mm) …
+const LOAD_BITS: i32 = 30;
+/// … of the inverse mass and inertia (1/g, 1/(g·mm²)) …
+const INVERSE_BITS: i32 = 30;
+/// … of gravity (mm/ms²) …
+const GRAVITY_BITS: i32 = 16;
+/// … and of the mass (g), for the reported weight.
+const MASS_BITS: i32 = 12;
+
+/// The new state of a single-sphere body.
+pub(super) struct SphereMove<S> {
+    pub velocity: Vec3<S>,
+    pub position: Vec3<S>,
+    pub angular_velocity: Vec3<S>,
+    pub force: Vec3<S>,
+    pub torque: Vec3<S>,
+    pub roll: S,
+    pub l1_displacement: S,
+}
+
+/// One step of a single-sphere body (module docs) in the unchecked [`Scalar::Fast`]
+/// arithmetic, or `None` when a magnitude lies outside the bounds above (then the checked
+/// arithmetic moves the body and reports any overflow). Each bound is tested once for a whole
+/// vector ([`Envelope::magnitude3`]). Inside them: a = F/m < 2^24 and (a + g)·dt < 2^28
+/// (checked products), the new velocity is checked below 2^24, so v·dt < 2^28, the new
+/// position < 2^29 + 2^28 and the L1 displacement < 2^30; the spin increment T/I·dt < 2^28
+/// and the rolling cap never exceeds ω·ω̂ ≤ |ω|.
+#[inline(always)]
+fn move_sphere_generic<S: Scalar>(
+    b: &Body<S>,
+    sums: &BodyForce<S>,
+    dt: S,
+    g: Vec3<S>,
+) -> Option<SphereMove<S>> {
+    type F<S> = <S as Scalar>::Fast;
+    let fast3 = |v: Vec3<S>| v.map(S::to_fast);
+    let within3 = |v: Vec3<F<S>>, bits| F::<S>::magnitude3(v).within(bits);
+    let (force, torque, roll) = (
+        fast3(sums.force()),
+        fast3(sums.torque()),
+        sums.roll().to_fast(),
+    );
+    let (vel, pos, w0) = (
+        fast3(b.velocity),
+        fast3(b.position),
+        fast3(b.angular_velocity),
+    );
+    let (dt, g) = (dt.to_fast(), fast3(g));
+    let (inv_m, inv_i, mass) = (
+        b.inv_mass.to_fast(),
+        b.inv_inertia.x.to_fast(),
+        b.mass.to_fast(),
+    );
+    let inputs_in = within3(force, LOAD_BITS)
+        & within3(torque, LOAD_BITS)
+        & roll.within(LOAD_BITS)
+        & within3(vel, VELOCITY_BITS)
+        & within3(w0, VELOCITY_BITS)
+        & within3(pos, POSITION_BITS)
+        & within3(g, GRAVITY_BITS)
+        & dt.within(TIMESTEP_BITS)
+        & inv_m.within(INVERSE_BITS)
+        & inv_i.within(INVERSE_BITS)
+        & mass.within(MASS_BITS);
+    if !inputs_in {
+        return None;
+    }
+    // The three products with an inverse mass or inertia are tested exactly
+    // (`mul_within` sees the whole product), since a light body has a large inverse.
+    let scaled = |v: Vec3<F<S>>, s: F<S>| {
+        let (x, ox) = v.x.mul_within(s, ACCELERATION_BITS);
+        let (y, oy) = v.y.mul_within(s, ACCELERATION_BITS);
+        let (z, oz) = v.z.mul_within(s, ACCELERATION_BITS);
+        (Vec3::new(x, y, z), ox & oy & oz)
+    };
+    let (acc, acc_in) = scaled(force, inv_m);
+    let (spin_acc, spin_in) = scaled(torque, inv_i);
+    let (roll_acc, roll_in) = roll.mul_within(inv_i, ACCELERATION_BITS);
+    if !(acc_in & spin_in & roll_in) {
+        return None;
+    }
+    // A kinematic body (inverse mass zero) keeps its velocity: no contact force, no gravity.
+    let velocity = if inv_m != F::<S>::ZERO {
+        vel + (acc + g).scale(dt)
+    } else {
+        vel
+    };
+    if !within3(velocity, VELOCITY_BITS) {
+        return None;
+    }
+    let dx = velocity.scale(dt);
+    let mut w = w0 + spin_acc.scale(dt);
+    if roll > F::<S>::ZERO {
+        if let Some(hat) = F::<S>::unit3(w0) {
+            let along = w.dot(hat);
+            if along > F::<S>::ZERO {
+                w -= hat.scale((roll_acc * dt).min(along));
+            }
+        }
+    }
+    let back = |v: Vec3<F<S>>| v.map(S::from_fast);
+    Some(SphereMove {
+        velocity: back(velocity),
+        position: back(pos + dx),
+        angular_velocity: back(w),
+        // m < 2^12 and |g| < 2^16 keep m·g < 2^28 before the sum with |F| < 2^30.
+        force: back(force + g.scale(mass)),
+        torque: back(torque),
+        roll: S::from_fast(roll),
+        l1_displacement: S::from_fast(dx.l1_norm()),
+    })
+}
