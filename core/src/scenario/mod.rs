@@ -13,6 +13,7 @@
 //! | [`BenchBed`] | `bench_bed.rs` | DESIGN §8 pour into a steel cylinder: many sphere–sphere and sphere–wall contacts |
 //! | [`ClumpSlide`] | `clump_slide.rs` | two- and three-sphere clumps sliding down a steel incline into each other and a stop wall |
 //! | [`MovingWallPile`] | `moving_wall.rs` | a small pile settled on a floor, then a plane blade moving through it at a prescribed velocity |
+//! | [`PackedBlock`] | `packed_block.rs` | spheres on a cubic lattice pressed into each other and a steel box: a dense contact network at any size (throughput at scale) |
 //! | [`PullOff`] | `pull_off.rs` | a bonded pod stalk clamped at one end, a pod clump bonded to the other and pulled off at constant speed (bonds, breakage, kinematic bodies) |
 //!
 //! [`measure`] holds the figures reported for a bed (bed height, centre-of-mass height).
@@ -33,12 +34,14 @@ pub mod insertion;
 pub mod materials;
 pub mod measure;
 pub mod moving_wall;
+pub mod packed_block;
 pub mod prng;
 pub mod pull_off;
 
 pub use bench_bed::BenchBed;
 pub use clump_slide::ClumpSlide;
 pub use moving_wall::MovingWallPile;
+pub use packed_block::PackedBlock;
 pub use prng::SplitMix64;
 pub use pull_off::PullOff;
 

@@ -90,14 +90,16 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         for i in self.spheres.clone() {
             let range = sh.offsets[i] as usize - base..sh.offsets[i + 1] as usize - base;
             let si = &sh.spheres[i];
+            // The fast paths sum the owner's loads here and add them to its body once.
+            let mut owner = BodyForce::<S>::default();
             for e in range {
                 let entry = self.entries[e];
                 let key = key_of(entry.partner);
                 if !with_effects {
                     let fast = if is_wall(key) {
-                        self.wall_fast(sh, si, key, e, &entry)
+                        self.wall_fast(sh, si, key, e, &entry, &mut owner)
                     } else {
-                        self.sphere_fast(sh, si, key as usize, e, &entry)
+                        self.sphere_fast(sh, si, key as usize, e, &entry, &mut owner)
                     };
                     match fast {
                         Fast::Done => continue,
@@ -138,6 +140,9 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
                     None => {}
                 }
             }
+            if owner != BodyForce::default() {
+                self.acc(si.body as usize).merge(&owner);
+            }
         }
         Ok(())
     }
@@ -158,6 +163,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         j: usize,
         e: usize,
         entry: &NeighbourEntry<S>,
+        owner: &mut BodyForce<S>,
     ) -> Fast {
         let sj = &sh.spheres[j];
         let f = S::to_fast;
@@ -213,7 +219,14 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         let Some(load) = evaluate_fast(&c, &pair.fused.fast(), &mut delta) else {
             return Fast::General;
         };
-        self.apply(&load_of(&load), si.body as usize, Some(sj.body as usize));
+        let load = load_of(&load);
+        owner.sub_force(load.force);
+        owner.add_torque(-load.torque_i);
+        owner.add_roll(load.roll_i);
+        let a = self.acc(sj.body as usize);
+        a.add_force(load.force);
+        a.add_torque(load.torque_j);
+        a.add_roll(load.roll_j);
         self.entries[e] = NeighbourEntry {
             partner: j as u32 | LIVE_FLAG,
             delta: delta.map(S::from_fast),
@@ -231,6 +244,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         key: u32,
         e: usize,
         entry: &NeighbourEntry<S>,
+        owner: &mut BodyForce<S>,
     ) -> Fast {
         let wi = ((key & !crate::contact::WALL_PARTNER_FLAG) >> 4) as usize;
         let w = &sh.walls[wi];
@@ -262,7 +276,9 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
             return Fast::General;
         };
         let load = load_of(&load);
-        self.apply(&load, si.body as usize, None);
+        owner.sub_force(load.force);
+        owner.add_torque(-load.torque_i);
+        owner.add_roll(load.roll_i);
         let wf = &mut self.wall_force[wi];
         S::sum_add(&mut wf[0], load.force.x);
         S::sum_add(&mut wf[1], load.force.y);

@@ -96,12 +96,16 @@ fn magnitude(v: [i64; 3]) -> u64 {
 /// A nonzero v as x·2^s with x ∈ [2^62, 2^64) and s even: (x, s).
 #[inline(always)]
 fn normalise(v: u128) -> (u64, i32) {
-    let lz = v.leading_zeros() as i32;
-    let s = (64 - lz + 1) & !1; // even, so that the root's exponent s/2 is whole
-    if s >= 0 {
-        ((v >> s) as u64, s)
+    // s = (bits − 64) rounded up to even, so that the root's exponent s/2 is whole; the two
+    // halves are handled apart because a variable 128-bit shift costs a dozen instructions.
+    let high = (v >> 64) as u64;
+    if high == 0 {
+        let low = v as u64;
+        let k = low.leading_zeros() & !1;
+        (low.wrapping_shl(k), -(k as i32))
     } else {
-        ((v << -s) as u64, s)
+        let s = (65 - high.leading_zeros() as i32) & !1;
+        ((v >> s) as u64, s)
     }
 }
 
@@ -137,7 +141,8 @@ fn scale_by_ratio(v: [i64; 3], target: i64, v2: u128) -> [i64; 3] {
     // 1/√v2 = y·2^(−62 − s/2) (v2 in raw units squared); v·target < 2^93, times y < 2^124.
     let sh = 62 + s / 2;
     let sh = sh.clamp(1, 126) as u32;
-    v.map(|c| ((c as i128 * target as i128 * y + (1i128 << (sh - 1))) >> sh) as i64)
+    let scale = |c: i64| ((c as i128 * target as i128 * y + (1i128 << (sh - 1))) >> sh) as i64;
+    [scale(v[0]), scale(v[1]), scale(v[2])]
 }
 
 /// `v` rescaled to length `target` (Q.32), where v2 = |v|² (Q.64).
@@ -170,7 +175,8 @@ fn distance_and_normal(d: [i64; 3], d2: u128) -> Option<(i64, [i64; 3])> {
     if !(1..=62).contains(&sh_n) {
         return None;
     }
-    let n = d.map(|c| shr(shr(c, STATE - 26) * y as i64, sh_n as u32));
+    let unit = |c: i64| shr(shr(c, STATE - 26) * y as i64, sh_n as u32);
+    let n = [unit(d[0]), unit(d[1]), unit(d[2])];
     Some((dist, n))
 }
 
