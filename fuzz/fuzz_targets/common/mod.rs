@@ -107,7 +107,11 @@ impl<S: Scalar> Arenas<S> {
     /// Arenas for `bodies` bodies and `spheres` spheres, default list and cell counts, with
     /// room for effect history.
     pub fn new(bodies: usize, spheres: usize) -> Self {
-        Self::with_neighbours(bodies, spheres, arachis_core::body::DEFAULT_NEIGHBOURS_PER_SPHERE)
+        Self::with_neighbours(
+            bodies,
+            spheres,
+            arachis_core::body::DEFAULT_NEIGHBOURS_PER_SPHERE,
+        )
     }
 
     /// Arenas with `per_sphere` neighbour-list entries per sphere.

@@ -196,11 +196,15 @@ pub fn evaluate(
     // Geometry: normal (Q.30), overlap and levers (Q.32).
     let (n30, alpha, li, lj) = match c.geometry {
         Geometry::Spheres { d, r_j, .. } => {
-            let rs = ri + r_j.raw();
+            let rj = r_j.raw();
             let d = raw3(d);
-            if !(rs < REACH_RAW && magnitude(d) < REACH_RAW as u64) {
+            if !((0..REACH_RAW).contains(&ri)
+                && (0..REACH_RAW).contains(&rj)
+                && magnitude(d) < REACH_RAW as u64)
+            {
                 return None;
             }
+            let rs = ri + rj;
             let d2: u128 = d.iter().map(|&x| (x as i128 * x as i128) as u128).sum();
             let rs2 = rs as u128 * rs as u128;
             // Touching, with an overlap of at most half the reach (centres not too close).
@@ -210,11 +214,11 @@ pub fn evaluate(
             let (dist, n) = distance_and_normal(d, d2)?;
             let alpha = rs - dist;
             let half = alpha >> 1;
-            (n, alpha, ri - half, r_j.raw() - half)
+            (n, alpha, ri - half, rj - half)
         }
         Geometry::Wall { normal, overlap } => {
             let alpha = overlap.raw();
-            if !(alpha < REACH_RAW && ri < REACH_RAW) {
+            if !((1..REACH_RAW).contains(&alpha) && (0..REACH_RAW).contains(&ri)) {
                 return None;
             }
             (
