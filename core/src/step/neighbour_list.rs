@@ -110,6 +110,8 @@ pub struct NeighbourList<'a, S> {
     drift: S,
     /// Skin of the current list, mm.
     skin: S,
+    /// The skin is R_max / `skin_divisor` ([`SKIN_DIVISOR`] unless a test changes it).
+    pub(crate) skin_divisor: i32,
 }
 
 impl<'a, S: Scalar> NeighbourList<'a, S> {
@@ -151,6 +153,7 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
             valid: false,
             drift: S::ZERO,
             skin: S::ZERO,
+            skin_divisor: SKIN_DIVISOR,
         })
     }
 
@@ -229,7 +232,7 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
         if self.valid {
             return Ok(());
         }
-        let skin = max_radius / S::ONE.mul_int(SKIN_DIVISOR);
+        let skin = max_radius / S::ONE.mul_int(self.skin_divisor);
         self.rebuild(spheres, walls, max_radius, skin)?;
         self.current ^= 1;
         self.listed = spheres.len();
