@@ -92,6 +92,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
             let si = &sh.spheres[i];
             // The fast paths sum the owner's loads here and add them to its body once.
             let mut owner = BodyForce::<S>::default();
+            let mut owner_touched = false;
             for e in range {
                 let entry = self.entries[e];
                 let key = key_of(entry.partner);
@@ -102,7 +103,10 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
                         self.sphere_fast(sh, si, key as usize, e, &entry, &mut owner)
                     };
                     match fast {
-                        Fast::Done => continue,
+                        Fast::Done => {
+                            owner_touched = true;
+                            continue;
+                        }
                         Fast::Apart => {
                             if entry.partner != key || entry.delta != Vec3::ZERO {
                                 self.write(e, key, &ContactState::default(), false);
@@ -140,7 +144,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
                     None => {}
                 }
             }
-            if owner != BodyForce::default() {
+            if owner_touched {
                 self.acc(si.body as usize).merge(&owner);
             }
         }
@@ -198,7 +202,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         } else {
             S::Fast::ONE / (f(si.inv_mass) + f(sj.inv_mass))
         };
-        let arm = |s: &Sphere<S>| (s.arm != Vec3::ZERO).then(|| s.arm.map(f));
+        let arm = |s: &Sphere<S>| s.in_clump().then(|| s.arm.map(f));
         let c = FusedContact {
             geometry: Geometry::Spheres {
                 d,
@@ -267,7 +271,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
             v_centres: w.velocity.map(f) - si.velocity.map(f),
             spin_i: si.spin.map(f),
             spin_j: Vec3::ZERO,
-            offset_i: (si.arm != Vec3::ZERO).then(|| si.arm.map(f)),
+            offset_i: si.in_clump().then(|| si.arm.map(f)),
             offset_j: None,
             dt: f(sh.dt),
         };

@@ -38,7 +38,7 @@ use crate::body::Sphere;
 use crate::contact::history::wall_key;
 use crate::contact::{EffectHistory, NeighbourEntry, WALL_PARTNER_FLAG};
 use crate::error::{CapacityKind, Other, SetupError, Stage, StepError};
-use crate::num::{Scalar, Vec3};
+use crate::num::{Envelope, Scalar, Vec3};
 use crate::wall::Wall;
 
 /// Partner-key flag of an entry whose pair touched in the last step and keeps history.
@@ -49,6 +49,10 @@ pub const LIVE_FLAG: u32 = 0x4000_0000;
 /// The skin is R_max / `SKIN_DIVISOR` (0.5 mm for the 4 mm pods of the bench bed): larger
 /// skins rebuild less often but hold more non-touching entries per sphere.
 pub const SKIN_DIVISOR: i32 = 8;
+
+/// Below a reach of 2^15 mm the rebuild squares distances in the unchecked arithmetic
+/// (|d|² < 3·2^30 mm² stays in range).
+const FAST_SQUARE_REACH_BITS: i32 = 15;
 
 /// The partner key without [`LIVE_FLAG`].
 #[inline(always)]
@@ -291,6 +295,9 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
         };
         let cells = &*self.cells;
         new_offsets[0] = 0;
+        let fast_squares = (max_radius.mul_int(2) + skin)
+            .to_fast()
+            .within(FAST_SQUARE_REACH_BITS);
         for i in 0..n {
             let si = &spheres[i];
             let reach_i = si.radius + skin;
@@ -309,25 +316,34 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
                 let run = cells[(row + x_lo) as usize] as usize
                     ..cells[(row + x_hi) as usize + 1] as usize;
                 for &j in &sorted[run] {
-                    // The owner keeps only partners above it.
-                    if j as usize <= i {
+                    // The owner keeps only partners above it, and none of its own body (a
+                    // clump's own spheres crowd its neighbourhood: skip them first).
+                    let sj = &spheres[j as usize];
+                    if j as usize <= i || sj.body == si.body {
                         continue;
                     }
-                    let sj = &spheres[j as usize];
                     let rs = reach_i + sj.radius;
                     let d: Vec3<S> = sj.position - si.position;
-                    if sj.body == si.body || d.x.abs() >= rs || d.y.abs() >= rs || d.z.abs() >= rs {
+                    if !(d.x.abs() < rs && d.y.abs() < rs && d.z.abs() < rs) {
                         continue;
                     }
-                    let d2 = d.norm2();
-                    if !d2.is_valid() {
-                        return Err(StepError::Overflow {
-                            stage: Stage::SphereContact,
-                            body: si.body,
-                            other: Other::Body(sj.body),
-                        });
-                    }
-                    if d2 < rs * rs {
+                    // |d_k| < rs: with rs below 2^15 mm |d|² and rs² cannot overflow, and
+                    // the unchecked products round as the checked ones.
+                    let inside = if fast_squares {
+                        let (d, rs) = (d.map(S::to_fast), rs.to_fast());
+                        d.norm2() < rs * rs
+                    } else {
+                        let d2 = d.norm2();
+                        if !d2.is_valid() {
+                            return Err(StepError::Overflow {
+                                stage: Stage::SphereContact,
+                                body: si.body,
+                                other: Other::Body(sj.body),
+                            });
+                        }
+                        d2 < rs * rs
+                    };
+                    if inside {
                         out.push(i, j)?;
                     }
                 }

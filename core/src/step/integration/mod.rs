@@ -22,6 +22,7 @@
 //! for the next step), then moves. A kinematic body (inverse mass zero) keeps its velocity:
 //! no contact force and no gravity.
 
+mod rigid_body;
 mod single_sphere;
 
 use super::parts::MAX_PARTS;
@@ -29,6 +30,7 @@ use crate::body::{Body, BodyForce, Sphere};
 use crate::error::{Other, Stage, StepError};
 use crate::num::{Envelope, Scalar, Vec3};
 use core::ops::Range;
+use rigid_body::{clump_envelope, state_of, step_body, Motion, OFFSET_BITS};
 use single_sphere::move_sphere;
 
 /// One part of the integration stage: a range of bodies and their spheres.
@@ -76,6 +78,8 @@ impl<S: Scalar> IntegratePart<'_, S> {
             let id = self.first_body + k;
             let sums = self.take_sums(id);
             let b = &mut self.bodies[k];
+            let first = b.first_sphere as usize - self.first_sphere;
+            let spheres = &mut self.spheres[first..first + b.sphere_count as usize];
             if !b.is_clump {
                 if let Some(m) = move_sphere(b, &sums, dt, g) {
                     b.velocity = m.velocity;
@@ -84,7 +88,7 @@ impl<S: Scalar> IntegratePart<'_, S> {
                     b.force = m.force;
                     b.torque = m.torque;
                     b.roll_torque = m.roll;
-                    let s = &mut self.spheres[b.first_sphere as usize - self.first_sphere];
+                    let s = &mut spheres[0];
                     s.position = m.position;
                     s.velocity = m.velocity;
                     s.spin = m.angular_velocity;
@@ -92,90 +96,93 @@ impl<S: Scalar> IntegratePart<'_, S> {
                     continue;
                 }
             }
-            let force = sums.force();
-            b.torque = sums.torque();
-            b.roll_torque = sums.roll();
-            // (F_c/m + g)·dt, not F·(dt/m): dt/m can be a few raw units in Q32.32 (tiny dt,
-            // light body). Gravity enters as g itself, not as the rounded force m·g, which for
-            // a very light body would shift its acceleration (fuzz finding F3); the body
-            // reports F_c + m·g.
-            if b.inv_mass != S::ZERO {
-                b.velocity += (force.scale(b.inv_mass) + g).scale(dt);
-            }
-            b.force = force + g.scale(b.mass);
-            let dx = b.velocity.scale(dt);
-            b.position += dx;
-            let w0 = b.angular_velocity;
-            let first = b.first_sphere as usize - self.first_sphere;
-            if !b.is_clump {
-                let inv_i = b.inv_inertia.x;
-                let mut w = w0 + b.torque.scale(inv_i).scale(dt);
-                if b.roll_torque > S::ZERO {
-                    if let Some(hat) = unit(w0) {
-                        let along = w.dot(hat);
-                        if along > S::ZERO {
-                            let dec = (b.roll_torque * inv_i * dt).min(along);
-                            w -= hat.scale(dec);
-                        }
-                    }
-                }
-                b.angular_velocity = w;
-                self.spheres[first].position = b.position;
-                self.spheres[first].sync_motion(b);
-                max_disp = max_disp.max(dx.l1_norm());
-            } else {
-                let rot = b.orientation.to_mat3();
-                let wb0 = rot.mul_t_vec(w0);
-                let tb = rot.mul_t_vec(b.torque);
-                let lb = b.inertia.mul_elem(wb0);
-                let gyro = wb0.cross(lb);
-                let mut wb = wb0 + b.inv_inertia.mul_elem(tb - gyro).scale(dt);
-                if b.roll_torque > S::ZERO {
-                    if let Some(hat) = unit(wb0) {
-                        let along = wb.dot(hat);
-                        // Δω = −s·I⁻¹ω̂ with angular impulse s ≤ Tr·dt; the ω̂ component then
-                        // falls by s·k, k = ω̂ᵀI⁻¹ω̂; cap s so it stops at zero.
-                        let dir = b.inv_inertia.mul_elem(hat);
-                        let k = dir.dot(hat);
-                        if along > S::ZERO && k > S::ZERO {
-                            let s = (b.roll_torque * dt).min(along / k);
-                            wb -= dir.scale(s);
-                        }
-                    }
-                }
-                let w = rot.mul_vec(wb);
-                b.angular_velocity = w;
-                b.orientation = b.orientation.integrate(w, dt);
-                let rot = b.orientation.to_mat3();
-                for s in self.spheres[first..first + b.sphere_count as usize].iter_mut() {
-                    let p = b.position + rot.mul_vec(s.offset);
-                    max_disp = max_disp.max((p - s.position).l1_norm());
-                    s.position = p;
-                    s.sync_motion(b);
-                    if !(s.position.is_valid() & s.velocity.is_valid()) {
-                        return Err(overflow(id));
-                    }
-                }
-                if !b.orientation.is_valid() {
-                    return Err(overflow(id));
-                }
-            }
-            if !(b.position.is_valid() & b.velocity.is_valid() & b.angular_velocity.is_valid()) {
-                return Err(overflow(id));
-            }
+            let disp = move_body(b, spheres, &sums, dt, g).ok_or(overflow(id))?;
+            max_disp = max_disp.max(disp);
         }
         self.max_disp = max_disp;
         Ok(())
     }
 }
 
-/// Unit vector along `v`, or `None` for the zero vector (accurate even for tiny ω, so rolling
-/// friction acts down to the last raw unit; no division: see [`Vec3::normalize_with_len`]).
-/// The scaled vector lies in [1, 2) per largest component, so the unchecked arithmetic of
-/// [`Scalar::Fast`] cannot overflow; its reciprocal root is the fast one.
-#[inline]
-fn unit<S: Scalar>(v: Vec3<S>) -> Option<Vec3<S>> {
-    S::Fast::unit3(v.map(S::to_fast)).map(|u| u.map(S::from_fast))
+/// One step of body `b` and its spheres: in the fast arithmetic when it is a clump inside
+/// [`clump_envelope`], else in the checked one ([`step_body`] either way, the same bits).
+/// Returns the largest sphere displacement (L1, mm), or `None` after an overflow.
+#[inline(always)]
+fn move_body<S: Scalar>(
+    b: &mut Body<S>,
+    spheres: &mut [Sphere<S>],
+    sums: &BodyForce<S>,
+    dt: S,
+    g: Vec3<S>,
+) -> Option<S> {
+    if b.is_clump {
+        let (m, k) = state_of(b, sums, S::to_fast);
+        let (dt_f, g_f) = (dt.to_fast(), g.map(S::to_fast));
+        let offsets_in = spheres
+            .iter()
+            .all(|s| S::Fast::magnitude3(s.offset.map(S::to_fast)).within(OFFSET_BITS));
+        if offsets_in && clump_envelope(&m, &k, dt_f, g_f) {
+            let new = step_body(&m, &k, true, dt_f, g_f);
+            return Some(store(b, spheres, &new, true, S::from_fast, S::to_fast));
+        }
+    }
+    let (m, k) = state_of(b, sums, |x| x);
+    let new = step_body(&m, &k, b.is_clump, dt, g);
+    let disp = store(b, spheres, &new, b.is_clump, |x| x, |x| x);
+    let valid = b.position.is_valid()
+        & b.velocity.is_valid()
+        & b.angular_velocity.is_valid()
+        & b.orientation.is_valid()
+        & spheres
+            .iter()
+            .all(|s| s.position.is_valid() & s.velocity.is_valid());
+    valid.then_some(disp)
+}
+
+/// Write the new motion (arithmetic T, back to S through `back`) into the body and its
+/// spheres: a clump's spheres at x + R·offset, each sphere's motion snapshot
+/// ([`Sphere::sync_motion`]'s values, computed in T). Returns the largest sphere
+/// displacement (L1, mm).
+#[inline(always)]
+fn store<S: Scalar, T: Scalar>(
+    b: &mut Body<S>,
+    spheres: &mut [Sphere<S>],
+    new: &Motion<T>,
+    clump: bool,
+    back: impl Fn(T) -> S + Copy,
+    to: impl Fn(S) -> T + Copy,
+) -> S {
+    let mut disp = T::ZERO;
+    if clump {
+        let rot = new.orientation.to_mat3();
+        for s in spheres.iter_mut() {
+            let arm = rot.mul_vec(s.offset.map(to));
+            let p = new.position + arm;
+            disp = disp.max((p - s.position.map(to)).l1_norm());
+            s.position = p.map(back);
+            s.arm = arm.map(back);
+            s.velocity = (new.velocity + new.angular_velocity.cross(arm)).map(back);
+            s.spin = new.angular_velocity.map(back);
+        }
+    } else {
+        let s = &mut spheres[0];
+        disp = (new.position - s.position.map(to)).l1_norm();
+        s.position = new.position.map(back);
+        s.velocity = new.velocity.map(back);
+        s.spin = new.angular_velocity.map(back);
+    }
+    b.position = new.position.map(back);
+    b.velocity = new.velocity.map(back);
+    b.angular_velocity = new.angular_velocity.map(back);
+    let q = new.orientation;
+    b.orientation.w = back(q.w);
+    b.orientation.x = back(q.x);
+    b.orientation.y = back(q.y);
+    b.orientation.z = back(q.z);
+    b.force = new.force.map(back);
+    b.torque = new.torque.map(back);
+    b.roll_torque = back(new.roll);
+    back(disp)
 }
 
 fn overflow(id: usize) -> StepError {
