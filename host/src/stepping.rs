@@ -26,18 +26,88 @@ use arachis_core::owned::OwnedThreadScratch;
 use arachis_core::step::parts::Parallel;
 use arachis_core::world::World;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
 
 /// Largest `--threads` accepted: far more than any machine this runs on has cores, small
 /// enough that a typo (`--threads 100000`) is refused instead of spawning threads.
 pub const MAX_THREADS: usize = arachis_core::step::parts::MAX_PARTS;
 
-/// The number of threads a command uses when `--threads` is not given: every core the
-/// operating system offers this process (1 if it cannot tell).
-pub fn default_threads() -> usize {
+/// Threads per run set by [`set_default_threads`] (0: not set).
+static DEFAULT_THREADS: AtomicUsize = AtomicUsize::new(0);
+
+/// Every core the operating system offers this process (1 if it cannot tell).
+pub fn available_cores() -> usize {
     std::thread::available_parallelism()
         .map(|n| n.get())
         .unwrap_or(1)
         .min(MAX_THREADS)
+}
+
+/// The number of threads a run steps on when its caller does not say: the value of
+/// [`set_default_threads`] (the command line's `--threads`), else every core.
+pub fn default_threads() -> usize {
+    match DEFAULT_THREADS.load(Ordering::Relaxed) {
+        0 => available_cores(),
+        n => n,
+    }
+}
+
+/// Set the threads per run of [`run`] for the rest of the process (a speed setting: in fixed
+/// point the result does not depend on it). Errors as [`check_threads`].
+pub fn set_default_threads(threads: usize) -> anyhow::Result<()> {
+    DEFAULT_THREADS.store(check_threads(threads)?, Ordering::Relaxed);
+    Ok(())
+}
+
+/// Run `steps` steps of `world` on [`default_threads`] threads (the pool is built once per
+/// thread count and shared; the per-thread force arenas are allocated per call, so call it
+/// for many steps at a time). Small worlds, where a thread hand-off costs more than it
+/// saves, step on the calling thread.
+pub fn run<S: Scalar>(world: &mut World<'_, S>, steps: u64) -> Result<(), StepError> {
+    let threads = default_threads();
+    if threads <= 1 || world.spheres().len() < MIN_SPHERES_PER_THREAD * threads {
+        return world.run(steps);
+    }
+    let pool = shared_pool(threads);
+    let mut scratch = OwnedThreadScratch::<S>::new(threads, world.bodies().len());
+    let parts = PoolParts {
+        pool: &pool,
+        parts: threads,
+    };
+    let mut arenas = scratch.arenas();
+    for _ in 0..steps {
+        world.step_with(&parts, &mut arenas)?;
+    }
+    Ok(())
+}
+
+/// Fewer spheres than this per thread step on one thread in [`run`]: a part then holds too
+/// little work to pay for waking a thread each stage (a few microseconds).
+pub const MIN_SPHERES_PER_THREAD: usize = 256;
+
+/// The process's pool of `threads` threads, built on first use.
+fn shared_pool(threads: usize) -> Arc<rayon::ThreadPool> {
+    static POOLS: Mutex<Vec<(usize, Arc<rayon::ThreadPool>)>> = Mutex::new(Vec::new());
+    let mut pools = POOLS.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, p)) = pools.iter().find(|(n, _)| *n == threads) {
+        return p.clone();
+    }
+    // A pool that cannot start degrades to rayon's global pool's behaviour on one thread.
+    let pool = Arc::new(
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .thread_name(|i| format!("arachis-step-{i}"))
+            .build()
+            .unwrap_or_else(|_| {
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(1)
+                    .build()
+                    .expect("a one-thread pool")
+            }),
+    );
+    pools.push((threads, pool.clone()));
+    pool
 }
 
 /// Check a `--threads` value: 1 to [`MAX_THREADS`].
@@ -147,6 +217,26 @@ mod tests {
         let one = digest(1);
         assert_eq!(digest(2), one);
         assert_eq!(digest(3), one);
+    }
+
+    /// [`run`] on the default thread count gives the digest of a one-thread run.
+    #[test]
+    fn run_on_the_default_threads_matches_one_thread() {
+        let bed = BenchBed {
+            particles: 600,
+            seed: 11,
+        };
+        let digest = |threaded: bool| {
+            let mut arena = crate::arena::OwnedStorage::<Fx>::new(bed.storage_lengths());
+            let mut world = bed.build(arena.storage()).unwrap();
+            if threaded {
+                run(&mut world, 300).unwrap();
+            } else {
+                world.run(300).unwrap();
+            }
+            world.digest()
+        };
+        assert_eq!(digest(true), digest(false));
     }
 
     #[test]
