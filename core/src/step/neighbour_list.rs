@@ -33,6 +33,7 @@
 //! ```
 
 use super::broad_phase::bin_spheres;
+use super::parts::{Parallel, Serial, MAX_PARTS};
 use crate::body::arena::index_len;
 use crate::body::Sphere;
 use crate::contact::history::wall_key;
@@ -227,17 +228,29 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
 
     /// Rebuild the list if it is stale, for `spheres` (max radius `max_radius`, mm) and
     /// `walls`.
-    pub(crate) fn ensure(
+    ///
+    /// The owners are scanned in `par.parts()` parts at once (each writing its own stretch of
+    /// the idle half, closed up afterwards), which gives the same list as one part.
+    pub(crate) fn ensure<P: Parallel>(
         &mut self,
         spheres: &[Sphere<S>],
         walls: &[Wall<S>],
         max_radius: S,
+        par: &P,
     ) -> Result<(), StepError> {
         if self.valid {
             return Ok(());
         }
         let skin = max_radius / S::ONE.mul_int(self.skin_divisor);
-        self.rebuild(spheres, walls, max_radius, skin)?;
+        let parts = par.parts().clamp(1, MAX_PARTS).min(spheres.len().max(1));
+        if self
+            .rebuild(spheres, walls, max_radius, skin, par, parts)
+            .is_err()
+        {
+            // A part outgrew its share of the half (or an owner failed): once more in one
+            // part, which reports the error, if any, as a serial rebuild would.
+            self.rebuild(spheres, walls, max_radius, skin, &Serial, 1)?;
+        }
         self.current ^= 1;
         self.listed = spheres.len();
         self.valid = true;
@@ -246,13 +259,16 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
         Ok(())
     }
 
-    /// Write the new list into the idle half, carrying history over.
-    fn rebuild(
+    /// Write the new list into the idle half, carrying history over, with the owners split
+    /// into `parts` ranges that `par` scans at once.
+    fn rebuild<P: Parallel>(
         &mut self,
         spheres: &[Sphere<S>],
         walls: &[Wall<S>],
         max_radius: S,
         skin: S,
+        par: &P,
+        parts: usize,
     ) -> Result<(), StepError> {
         let n = spheres.len();
         let cap = self.sphere_capacity;
@@ -283,25 +299,129 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
                     (&*f1, &mut f0[..self.half])
                 }
             };
-        let mut out = Writer {
+        let scan = Scan {
+            spheres,
+            walls,
+            grid,
+            cell_of,
+            sorted,
+            cells: self.cells,
+            skin,
+            fast_squares: (max_radius.mul_int(2) + skin)
+                .to_fast()
+                .within(FAST_SQUARE_REACH_BITS),
             old: Live {
                 offsets: &old_offsets[..self.listed + 1],
                 entries: old_entries,
                 effects: old_effects,
             },
-            entries: new_entries,
-            effects: new_effects,
-            at: 0,
         };
-        let cells = &*self.cells;
+        // Owners in `parts` ranges of equal size, each with an equal stretch of the half.
         new_offsets[0] = 0;
-        let fast_squares = (max_radius.mul_int(2) + skin)
-            .to_fast()
-            .within(FAST_SQUARE_REACH_BITS);
-        for i in 0..n {
+        let stretch = self.half / parts;
+        let mut jobs: heapless::Vec<RebuildPart<'_, S>, MAX_PARTS> = heapless::Vec::new();
+        {
+            let mut entries = new_entries;
+            let mut effects = new_effects;
+            let mut offsets = &mut new_offsets[1..n + 1];
+            for p in 0..parts {
+                let owners = p * n / parts..(p + 1) * n / parts;
+                let (o, rest) = core::mem::take(&mut offsets).split_at_mut(owners.len());
+                offsets = rest;
+                let len = if p + 1 == parts {
+                    entries.len()
+                } else {
+                    stretch
+                };
+                let (e, rest) = core::mem::take(&mut entries).split_at_mut(len);
+                entries = rest;
+                let f = if effects.is_empty() {
+                    &mut [][..]
+                } else {
+                    let (f, rest) = core::mem::take(&mut effects).split_at_mut(len);
+                    effects = rest;
+                    f
+                };
+                let _ = jobs.push(RebuildPart {
+                    owners,
+                    start: p * stretch,
+                    ends: o,
+                    out: Writer {
+                        old: scan.old,
+                        entries: e,
+                        effects: f,
+                        at: 0,
+                    },
+                    result: Ok(()),
+                });
+            }
+        }
+        par.for_each(&mut jobs, &|part: &mut RebuildPart<'_, S>| part.run(&scan));
+        let mut counts: heapless::Vec<(usize, usize), MAX_PARTS> = heapless::Vec::new();
+        for part in jobs.iter() {
+            part.result?;
+            let _ = counts.push((part.start, part.out.at));
+        }
+        drop(jobs);
+        // Close the stretches up: each part's entries move down behind the previous part's,
+        // and its owners' end offsets (written relative to its stretch) become absolute.
+        let mut at = 0usize;
+        for (p, &(start, count)) in counts.iter().enumerate() {
+            let owners = p * n / parts..(p + 1) * n / parts;
+            let half = &mut self.entries[self.half * (old ^ 1)..self.half * (old ^ 1) + self.half];
+            half.copy_within(start..start + count, at);
+            if !self.effects.is_empty() {
+                let fx =
+                    &mut self.effects[self.half * (old ^ 1)..self.half * (old ^ 1) + self.half];
+                fx.copy_within(start..start + count, at);
+            }
+            let offsets_at = self.offsets_at(old ^ 1);
+            for end in &mut self.index[offsets_at][owners.start + 1..owners.end + 1] {
+                *end += at as u32;
+            }
+            at += count;
+        }
+        Ok(())
+    }
+}
+
+/// What every part of a rebuild reads.
+struct Scan<'s, S> {
+    spheres: &'s [Sphere<S>],
+    walls: &'s [Wall<S>],
+    grid: super::broad_phase::Grid,
+    cell_of: &'s [u32],
+    sorted: &'s [u32],
+    cells: &'s [u32],
+    skin: S,
+    /// Whether distances may be squared in the unchecked arithmetic
+    /// ([`FAST_SQUARE_REACH_BITS`]).
+    fast_squares: bool,
+    old: Live<'s, S>,
+}
+
+/// One part of a rebuild: a range of owners, the stretch of the idle half it writes, and the
+/// end offsets of its owners (relative to its stretch until the parts are closed up).
+struct RebuildPart<'w, S> {
+    owners: core::ops::Range<usize>,
+    /// Where its stretch starts in the half.
+    start: usize,
+    ends: &'w mut [u32],
+    out: Writer<'w, S>,
+    result: Result<(), StepError>,
+}
+
+impl<S: Scalar> RebuildPart<'_, S> {
+    fn run(&mut self, sc: &Scan<'_, S>) {
+        self.result = self.scan(sc);
+    }
+
+    fn scan(&mut self, sc: &Scan<'_, S>) -> Result<(), StepError> {
+        let (spheres, grid, cells) = (sc.spheres, &sc.grid, sc.cells);
+        for (k, i) in self.owners.clone().enumerate() {
             let si = &spheres[i];
-            let reach_i = si.radius + skin;
-            let [cx, cy, cz] = grid.coords(cell_of[i]);
+            let reach_i = si.radius + sc.skin;
+            let [cx, cy, cz] = grid.coords(sc.cell_of[i]);
             // The 3×3×3 neighbourhood as nine rows along x: the three cells of a row are
             // consecutive, so their spheres are one run of `sorted`.
             let x_lo = cx.saturating_sub(1);
@@ -315,7 +435,7 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
                 let row = (z * grid.dims[1] + y) * grid.dims[0];
                 let run = cells[(row + x_lo) as usize] as usize
                     ..cells[(row + x_hi) as usize + 1] as usize;
-                for &j in &sorted[run] {
+                for &j in &sc.sorted[run] {
                     // The owner keeps only partners above it, and none of its own body (a
                     // clump's own spheres crowd its neighbourhood: skip them first).
                     let sj = &spheres[j as usize];
@@ -329,7 +449,7 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
                     }
                     // |d_k| < rs: with rs below 2^15 mm |d|² and rs² cannot overflow, and
                     // the unchecked products round as the checked ones.
-                    let inside = if fast_squares {
+                    let inside = if sc.fast_squares {
                         let (d, rs) = (d.map(S::to_fast), rs.to_fast());
                         d.norm2() < rs * rs
                     } else {
@@ -344,19 +464,19 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
                         d2 < rs * rs
                     };
                     if inside {
-                        out.push(i, j)?;
+                        self.out.push(i, j)?;
                     }
                 }
             }
-            for (w, wall) in walls.iter().enumerate() {
-                let mut faces = wall.shape.faces_near(si.position, si.radius, skin);
+            for (w, wall) in sc.walls.iter().enumerate() {
+                let mut faces = wall.shape.faces_near(si.position, si.radius, sc.skin);
                 while faces != 0 {
                     let face = faces.trailing_zeros();
                     faces &= faces - 1;
-                    out.push(i, wall_key(w as u32, face))?;
+                    self.out.push(i, wall_key(w as u32, face))?;
                 }
             }
-            new_offsets[i + 1] = out.at as u32;
+            self.ends[k] = self.out.at as u32;
         }
         Ok(())
     }

@@ -85,7 +85,7 @@ impl<S: Scalar> World<'_, S> {
             )?;
         }
         self.list
-            .ensure(&self.spheres[..ns], &self.walls, self.max_radius)?;
+            .ensure(&self.spheres[..ns], &self.walls, self.max_radius, par)?;
         // One part per usable scratch arena, when the runner has threads for them.
         let usable = scratch.iter().filter(|a| a.len() >= nb).count();
         let parts = if par.parts() > 1 {
