@@ -1,5 +1,5 @@
-//! The calibration's DEM simulator (`calibrate::DemExperiment`) on one real pile: the
-//! cheap piece of the end-to-end DEM calibration (the whole quick calibration is 44 piles,
+//! The pod repose rig (`rigs::pod_bench::PodBenchRig`) on one real pile: the cheap piece
+//! of the end-to-end DEM calibration (the whole quick calibration is 44 piles,
 //! about 16 CPU-minutes, too slow for CI; `calibrate_committed_run` replays its committed run).
 //!
 //! One quick-mode repose spec at the seed's optimum (seed 000 §3.6.2), on the test pile of
@@ -13,9 +13,9 @@
 
 use std::collections::BTreeMap;
 
-use arachis::calibrate::dem::PILE_PICTURE;
-use arachis::calibrate::{DemExperiment, Simulator};
+use arachis::calibration::{Rig, RunRequest};
 use arachis::experiments::{run_experiment, ExperimentKind, ModeName, RunOptions};
+use arachis::rigs::pod_bench::{parameter_values, PodBenchRig, PILE_PICTURE};
 use arachis::study::Experiment;
 
 mod quick_pile_support;
@@ -31,29 +31,33 @@ fn dem_adapter_answers_like_the_rig_and_redraws_the_same_pile() {
     ]
     .into_iter()
     .collect();
-    let spec = study
-        .run_spec(Experiment::Repose, &BTreeMap::new(), &values, "quick")
-        .unwrap();
-    let dem = DemExperiment::new(&study);
-    let answered = dem.simulate(&spec).unwrap().response;
+    let condition = BTreeMap::new();
+    let request = RunRequest {
+        values: &values,
+        condition: &condition,
+        replicate: 0,
+    };
+    let dem = PodBenchRig::new(&study, Experiment::Repose, ModeName::Quick);
+    let spec = dem.run_spec(&request).unwrap();
+    let answered = dem.run(&request).unwrap()["repose_angle"];
 
     // The direct rig run and the redraw by a fresh adapter (nothing in memory, as after a
     // resumed calibration) run side by side.
     let dir = tempfile::tempdir().unwrap();
-    let fresh = DemExperiment::new(&study);
+    let fresh = PodBenchRig::new(&study, Experiment::Repose, ModeName::Quick);
     let (direct, path) = rayon::join(
         || {
             run_experiment(
                 &study,
                 ExperimentKind::Repose,
-                &arachis::calibrate::parameter_values(&spec),
+                &parameter_values(&spec),
                 ModeName::Quick,
                 spec.simulation.random_seed,
                 &RunOptions::default(),
             )
             .unwrap()
         },
-        || fresh.pile_picture(&spec, dir.path()).unwrap().unwrap(),
+        || fresh.picture(&request, dir.path()).unwrap().unwrap(),
     );
     eprintln!("adapter {answered} °, run_experiment {} °", direct.value);
     assert_eq!(answered.to_bits(), direct.value.to_bits());

@@ -11,7 +11,9 @@ use cli_support::{arachis_at_root as arachis, REPO_ROOT};
 
 /// A committed reference file.
 fn golden(name: &str) -> Vec<u8> {
-    let path = Path::new(REPO_ROOT).join("testdata/golden-c5d1f03").join(name);
+    let path = Path::new(REPO_ROOT)
+        .join("testdata/golden-c5d1f03")
+        .join(name);
     std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
@@ -20,7 +22,10 @@ fn same_bytes(what: &str, actual: &[u8], expected: &[u8]) {
     if actual == expected {
         return;
     }
-    let (a, e) = (String::from_utf8_lossy(actual), String::from_utf8_lossy(expected));
+    let (a, e) = (
+        String::from_utf8_lossy(actual),
+        String::from_utf8_lossy(expected),
+    );
     let line = a
         .lines()
         .zip(e.lines())

@@ -340,7 +340,7 @@ fn assert_keys_sorted(value: &serde_json::Value) {
 /// Published FNV-1a 64 test vectors (Fowler–Noll–Vo reference test suite).
 #[test]
 fn fnv1a_matches_published_vectors() {
-    use arachis::study::spec_hash::fnv1a_64;
+    use arachis::calibration::spec_hash::fnv1a_64;
     assert_eq!(fnv1a_64(b""), 0xcbf29ce484222325);
     assert_eq!(fnv1a_64(b"a"), 0xaf63dc4c8601ec8c);
     assert_eq!(fnv1a_64(b"foobar"), 0x85944171f73967e8);
@@ -360,7 +360,7 @@ fn spec_hash_golden_value() {
         .unwrap();
     let text = spec.canonical_json();
     assert_eq!(
-        arachis::study::spec_hash::fnv1a_64(text.as_bytes()),
+        arachis::calibration::spec_hash::fnv1a_64(text.as_bytes()),
         spec.spec_hash().0
     );
     assert_eq!(spec.spec_hash().to_string(), GOLDEN, "{text}");

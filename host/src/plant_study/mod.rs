@@ -8,8 +8,8 @@
 //! [`StudyErrors`] naming file, key, line:column and reason — and checks everything before
 //! any pull: the nine Table 5 factors and only those, low < high within physical limits,
 //! the measured force, the topology and its bond sets, and every plan setting
-//! ([`validate`]). A valid study becomes a [`Plan`] and a [`PullOffSimulator`] for
-//! `crate::plant_calibration::calibrate_plan`.
+//! ([`validate`]). A valid study becomes calibration factors, plan settings and a
+//! [`PullOffRig`] for the calibration engine.
 
 pub mod file_format;
 pub mod validate;
@@ -20,13 +20,24 @@ use arachis_core::bond::BondSetSpec;
 use arachis_core::scenario::pull_off::{PullOff, TAG_JUNCTION, TAG_STALK};
 use toml::de::DeTable;
 
+use crate::calibration::settings::{
+    Extension, NamedFactors, PathSettings, PlanSettings, ScreeningSettings, SurfaceDesign,
+    SurfaceSettings, ValidationSettings,
+};
+use crate::calibration::Factor;
+use crate::doe::PlackettBurmanRuns;
 use crate::plant::topology::BondSet;
 use crate::plant::Topology;
-use crate::plant_calibration::factors::TABLE5;
-use crate::plant_calibration::{Plan, PullOffSimulator};
+use crate::rigs::pull_off::{PullOffRig, PARAMETERS};
+use crate::stats::ModelOrder;
 use crate::study::source::Source;
 use crate::study::StudyErrors;
 pub use file_format::{PlantStudyFile, KIND_PULL_OFF};
+
+/// The shipped seed 001 study, as built in.
+const SHIPPED_STUDY: &str = include_str!("../../../testdata/peanut-plant/study.toml");
+/// Where the shipped study lies in the repository (it names the built-in study in messages).
+const SHIPPED_STUDY_PATH: &str = "testdata/peanut-plant/study.toml";
 
 /// A plant study that passed every check (only [`PlantStudy::load`] and
 /// [`PlantStudy::from_toml`] make one).
@@ -63,10 +74,20 @@ impl PlantStudy {
     /// Parses and validates `text` as if read from `path` (which names the file in messages
     /// and anchors the topology path).
     pub fn from_toml(text: &str, path: &Path) -> Result<Self, StudyErrors> {
+        Self::from_toml_reading(text, path, &|p| std::fs::read_to_string(p))
+    }
+
+    /// Like [`PlantStudy::from_toml`], reading the files the study names (its topology)
+    /// with `read` (a study built into the program serves its own).
+    pub fn from_toml_reading(
+        text: &str,
+        path: &Path,
+        read: ReadFile<'_>,
+    ) -> Result<Self, StudyErrors> {
         let src = Source::parse(path, text).map_err(|e| StudyErrors(e).sorted())?;
         let file = validate::decode(&src).map_err(|e| StudyErrors(e).sorted())?;
         let dir = path.parent().unwrap_or(Path::new("."));
-        let (sets, errors) = validate::validate(&src, &file, dir);
+        let (sets, errors) = validate::validate(&src, &file, dir, read);
         match sets {
             Some((junction, stalk)) if errors.is_empty() => Ok(Self {
                 path: path.to_owned(),
@@ -76,6 +97,48 @@ impl PlantStudy {
             }),
             _ => Err(StudyErrors(errors).sorted()),
         }
+    }
+
+    /// Seed 001's study as shipped (`testdata/peanut-plant/study.toml` and its topology),
+    /// built into the program.
+    pub fn shipped() -> Self {
+        let path = Path::new(SHIPPED_STUDY_PATH);
+        let read = |p: &Path| {
+            if p.file_name() == Some(std::ffi::OsStr::new(crate::plant::SHIPPED_TOPOLOGY_FILE)) {
+                Ok(crate::plant::SHIPPED_TOPOLOGY.to_owned())
+            } else {
+                std::fs::read_to_string(p)
+            }
+        };
+        Self::from_toml_reading(SHIPPED_STUDY, path, &read).expect("the shipped study is valid")
+    }
+
+    /// Sets the measured detachment force, N (checked by the caller).
+    pub fn set_target_n(&mut self, force_n: f64) {
+        self.file.measurement.value_n = force_n;
+    }
+
+    /// Sets the pull's speed (m/s) and direction from the stalk axis (degrees), checked by
+    /// the caller.
+    pub fn set_pull(&mut self, speed_m_s: f64, angle_deg: f64) {
+        self.file.rig.pull_speed_m_s = speed_m_s;
+        self.file.rig.pull_angle_deg = angle_deg;
+    }
+
+    /// Names the factors of the path and the central composite design (checked with
+    /// [`validate::check_carry`]), and why; `None` leaves the choice to the screening.
+    pub fn set_named_factors(
+        &mut self,
+        labels: Option<Vec<String>>,
+        why: &str,
+    ) -> Result<(), String> {
+        if let Some(l) = &labels {
+            validate::check_carry(l)?;
+        }
+        let c = &mut self.file.plan.central_composite;
+        c.why = labels.as_ref().map(|_| why.to_owned());
+        c.factors = labels;
+        Ok(())
     }
 
     /// The file it was loaded from.
@@ -112,10 +175,11 @@ impl PlantStudy {
                 f.rig.topology
             ),
         ];
-        for factor in self.plan().factors {
+        for f in self.factors() {
+            let p = crate::rigs::pull_off::by_name(&f.name).expect("a pull-off factor");
             lines.push(format!(
                 "  {} {} ({}): {} … {}",
-                factor.label, factor.description, factor.unit, factor.low, factor.high
+                f.label, p.description, f.unit, f.low, f.high
             ));
         }
         lines.push(format!(
@@ -144,40 +208,76 @@ impl PlantStudy {
         self.file.measurement.value_n
     }
 
-    /// The calibration plan the file states.
-    pub fn plan(&self) -> Plan {
+    /// The nine factors of seed 001 Table 5 with the study's levels, each held at its
+    /// range's centre when not varied.
+    pub fn factors(&self) -> Vec<Factor> {
+        PARAMETERS
+            .iter()
+            .map(|p| {
+                let levels = &self.file.factors[p.label];
+                Factor {
+                    name: p.name.to_owned(),
+                    label: p.label.to_owned(),
+                    unit: p.unit.to_owned(),
+                    low: levels.low,
+                    high: levels.high,
+                    held: 0.5 * (levels.low + levels.high),
+                    physical: p.limits,
+                    admitted: p.limits,
+                }
+            })
+            .collect()
+    }
+
+    /// The plan the file states: seed 001's sequence (the path going on one step at a time
+    /// while it approaches the target, a central composite response surface, one
+    /// validation pull of the deterministic rig).
+    pub fn plan_settings(&self) -> PlanSettings {
         let p = &self.file.plan;
-        let mut plan = Plan::seed001();
-        plan.factors = TABLE5.map(|mut f| {
-            let levels = &self.file.factors[f.label];
-            f.low = levels.low;
-            f.high = levels.high;
-            f
-        });
-        plan.screening_runs = p.screening.runs;
-        plan.screening_centre_points = p.screening.centre_points;
-        plan.significance = p.screening.significance;
-        plan.carry_level = p.screening.carry_level;
-        plan.path_step_coded = p.steepest_ascent.step_coded;
-        plan.path_first_points = p.steepest_ascent.points;
-        plan.path_max_points = p.steepest_ascent.max_points;
-        plan.ccd_alpha = p.central_composite.alpha;
-        plan.ccd_centre_points = p.central_composite.centre_points;
-        plan.carry = p.central_composite.factors.clone();
-        plan.carry_reason = p
-            .central_composite
-            .why
-            .as_ref()
-            .map(|why| format!("named by the study's [plan.central_composite] factors: {why}"));
-        plan.max_relative_error_pct = p.validation.max_relative_error_pct;
-        plan
+        let c = &p.central_composite;
+        PlanSettings {
+            screening: ScreeningSettings {
+                runs: if p.screening.runs == 20 {
+                    PlackettBurmanRuns::Twenty
+                } else {
+                    PlackettBurmanRuns::Twelve
+                },
+                centre_points: p.screening.centre_points,
+                significance: p.screening.significance,
+                carry_level: Some(p.screening.carry_level),
+                named: c.factors.clone().map(|labels| NamedFactors {
+                    labels,
+                    reason: format!(
+                        "named by the study's [plan.central_composite] factors: {}",
+                        c.why.as_deref().unwrap_or_default()
+                    ),
+                }),
+            },
+            path: PathSettings {
+                points: p.steepest_ascent.points,
+                step_coded: p.steepest_ascent.step_coded,
+                origin_coded: -1.0,
+                extension: Extension::SingleSteps {
+                    max_points: p.steepest_ascent.max_points,
+                },
+            },
+            surface: SurfaceSettings {
+                design: SurfaceDesign::CentralComposite { alpha: c.alpha },
+                centre_points: c.centre_points,
+                model: ModelOrder::Quadratic,
+            },
+            validation: ValidationSettings {
+                replicates: 1,
+                max_relative_error_pct: p.validation.max_relative_error_pct,
+            },
+        }
     }
 
     /// The tensile test the file describes: the default rig's geometry (seed 001 Table 1)
     /// with the topology's junction and stalk bond sets and the study's pull conditions.
-    pub fn simulator(&self) -> PullOffSimulator {
+    pub fn rig(&self) -> PullOffRig {
         let r = &self.file.rig;
-        PullOffSimulator {
+        PullOffRig {
             base: PullOff {
                 stalk_spheres: r.stalk_spheres,
                 pull_speed_m_s: r.pull_speed_m_s,
@@ -202,10 +302,13 @@ fn spec(tag: u16, b: &BondSet) -> BondSetSpec {
     }
 }
 
-/// The topology at `path`, read and checked.
-pub fn read_topology(path: &Path) -> Result<Topology, String> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("cannot read the topology {}: {e}", path.display()))?;
+/// Reads a file a study names.
+pub type ReadFile<'a> = &'a dyn Fn(&Path) -> std::io::Result<String>;
+
+/// The topology at `path`, read with `read` and checked.
+pub fn read_topology(path: &Path, read: ReadFile<'_>) -> Result<Topology, String> {
+    let text =
+        read(path).map_err(|e| format!("cannot read the topology {}: {e}", path.display()))?;
     let t = Topology::from_toml(&text).map_err(|e| e.to_string())?;
     t.check().map_err(|e| e.to_string())?;
     Ok(t)

@@ -8,10 +8,10 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use super::file_format::{FactorLevels, PlantStudyFile, KIND_PULL_OFF, SECTIONS};
-use super::read_topology;
+use super::{read_topology, ReadFile};
+use crate::calibration::plan::central_composite::{MAX_FACTORS, MIN_FACTORS};
 use crate::plant::topology::BondSet;
-use crate::plant_calibration::factors::{by_label, TABLE5};
-use crate::plant_calibration::plan::check_carry;
+use crate::rigs::pull_off::{by_label, PARAMETERS};
 use crate::study::decode::{map, root_sections, whole};
 use crate::study::source::Source;
 use crate::study::{nearest_name, KeyPath, StudyError};
@@ -26,6 +26,26 @@ pub const GOAL: &str = "target";
 pub const MAX_PULL_ANGLE_DEG: f64 = 90.0;
 /// Most stalk spheres (the arenas are sized for the rig; more only slows every pull).
 pub const MAX_STALK_SPHERES: u32 = 64;
+
+/// Refuses a list of factors for the path and the central composite design that is not
+/// 2–3 distinct Table 5 labels.
+pub fn check_carry(carry: &[String]) -> Result<(), String> {
+    if !(MIN_FACTORS..=MAX_FACTORS).contains(&carry.len()) {
+        return Err(format!(
+            "the central composite stage takes {MIN_FACTORS} to {MAX_FACTORS} factors, got {}",
+            carry.len()
+        ));
+    }
+    for (i, l) in carry.iter().enumerate() {
+        if by_label(l).is_none() {
+            return Err(format!("unknown factor '{l}' (seed 001 Table 5 has x1…x9)"));
+        }
+        if carry[..i].contains(l) {
+            return Err(format!("factor '{l}' given twice"));
+        }
+    }
+    Ok(())
+}
 
 /// Decodes every section, or returns every structural error found.
 pub(crate) fn decode(src: &Source<'_>) -> Result<PlantStudyFile, Vec<StudyError>> {
@@ -57,6 +77,7 @@ pub(crate) fn validate(
     src: &Source<'_>,
     file: &PlantStudyFile,
     dir: &Path,
+    read: ReadFile<'_>,
 ) -> (Option<(BondSet, BondSet)>, Vec<StudyError>) {
     let mut errors = Vec::new();
     let root = KeyPath::root();
@@ -102,7 +123,7 @@ pub(crate) fn validate(
             ),
         );
     }
-    let sets = match read_topology(&dir.join(&rig.topology)) {
+    let sets = match read_topology(&dir.join(&rig.topology), read) {
         Err(reason) => {
             err(at.key("topology"), reason);
             None
@@ -165,7 +186,7 @@ pub(crate) fn validate(
 
     // [factors]
     let at = root.key("factors");
-    let labels: Vec<&str> = TABLE5.iter().map(|f| f.label).collect();
+    let labels: Vec<&str> = PARAMETERS.iter().map(|f| f.label).collect();
     for (label, levels) in &file.factors {
         let Some(f) = by_label(label) else {
             let hint = nearest_name(label, &labels)
@@ -179,8 +200,11 @@ pub(crate) fn validate(
         let here = at.key(label);
         let mut ok = true;
         for (key, v) in [("low", levels.low), ("high", levels.high)] {
-            if let Err(reason) = f.check(v) {
-                err(here.key(key), reason);
+            if let Err(reason) = f.limits.check(v) {
+                err(
+                    here.key(key),
+                    format!("{} ({}): {reason}", f.label, f.description),
+                );
                 ok = false;
             }
         }
@@ -194,7 +218,7 @@ pub(crate) fn validate(
             );
         }
     }
-    for f in &TABLE5 {
+    for f in &PARAMETERS {
         if !file.factors.contains_key(f.label) {
             err(
                 at.key(f.label),

@@ -23,7 +23,7 @@ use std::fmt;
 
 use serde::{Deserialize, Serialize};
 
-use super::limits::Limits;
+use crate::limits::Limits;
 
 /// The virtual (and bench) experiments a study can measure and simulate (issue 4 §2).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]

@@ -20,7 +20,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::limits::Limits;
+use crate::limits::Limits;
 
 /// What a parameter sets: a property of a material or of a contact pair.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

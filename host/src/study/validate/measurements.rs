@@ -3,9 +3,9 @@
 use std::collections::BTreeMap;
 
 use super::Validator;
+use crate::limits::Limits;
 use crate::study::file_format::StudyFile;
 use crate::study::key_path::KeyPath;
-use crate::study::limits::Limits;
 use crate::study::measurements::{conditions_of, quantities_of, Experiment, Measurement};
 use crate::study::nearest_name::nearest_name;
 

@@ -19,10 +19,10 @@ mod measurements;
 mod plan;
 mod ranges;
 
+use crate::limits::Limits;
 use crate::study::error::StudyError;
 use crate::study::file_format::{StudyFile, PAIR_PROPERTIES};
 use crate::study::key_path::KeyPath;
-use crate::study::limits::Limits;
 use crate::study::nearest_name::nearest_name;
 use crate::study::parameters;
 use crate::study::source::Source;

@@ -1,9 +1,9 @@
 //! Checks of `[plan]`: mode, designs, target and validation references, simulation settings.
 
 use super::{Validator, MIN_BOX_BEHNKEN_CENTRE_POINTS, MIN_GRID_CELL_RADII};
+use crate::limits::Limits;
 use crate::study::file_format::StudyFile;
 use crate::study::key_path::KeyPath;
-use crate::study::limits::Limits;
 
 impl Validator<'_, '_> {
     pub(super) fn plan(&mut self, file: &StudyFile) {

@@ -1,122 +1,25 @@
-//! The report folder: `calibration.json` (every number), `report.md` (the story with
-//! tables) and `figures/*.svg`. Every file is written atomically (`io::write_atomic`), the
-//! JSON last, so a folder with a `calibration.json` is complete. Nothing here depends on
-//! time, paths or thread count: the same calibration writes the same bytes.
+//! `report.md`: the story of a calibration with its tables, in the words of
+//! `calibration.json`, linking the figures of [`super::figures`].
 
 use std::fmt::Write as _;
-use std::path::Path;
 
-use super::figures;
-use super::{CalibrateError, Calibration, Runner};
-use crate::io::write_string_atomic;
+use super::calibration_json::{CalibrationJson, RunJson};
+use super::{FIGURES_DIR, PILE_SCHEMATIC};
 use crate::stats::report::{format_number, format_p, text_report};
 
-/// Folder of the figures inside the output folder.
-pub const FIGURES_DIR: &str = "figures";
-/// The JSON file name.
-pub const JSON_FILE: &str = "calibration.json";
-/// The report file name.
-pub const REPORT_FILE: &str = "report.md";
-
-fn write(path: &Path, text: &str) -> Result<(), CalibrateError> {
-    write_string_atomic(path, text).map_err(|e| CalibrateError::Io {
-        path: path.to_owned(),
-        reason: format!("{e:#}"),
-    })
-}
-
-fn figure(path: &Path, svg: Result<String, String>) -> Result<(), CalibrateError> {
-    let svg = svg.map_err(|reason| CalibrateError::Io {
-        path: path.to_owned(),
-        reason,
-    })?;
-    write(path, &svg)
-}
-
-/// Writes the figures, `report.md` and `calibration.json` into `out`.
-pub fn write_all(
-    runner: &Runner<'_>,
-    calibration: &Calibration,
-    out: &Path,
-) -> Result<(), CalibrateError> {
-    let figures_dir = out.join(FIGURES_DIR);
-    std::fs::create_dir_all(&figures_dir).map_err(|e| CalibrateError::Io {
-        path: figures_dir.clone(),
-        reason: e.to_string(),
-    })?;
-    for dir in [out, figures_dir.as_path()] {
-        super::run_cache::remove_stale_temporaries(dir).map_err(|e| CalibrateError::Io {
-            path: dir.to_owned(),
-            reason: e.to_string(),
-        })?;
-    }
-    let unit = &calibration.target.unit;
-    let mut figure_names = Vec::new();
-    figure(
-        &figures_dir.join("pareto.svg"),
-        figures::pareto(&calibration.screening, unit),
-    )?;
-    let bbd = &calibration.box_behnken;
-    for (i, j) in figures::surface_pairs(bbd) {
-        let name = format!(
-            "surface_{}_{}.svg",
-            bbd.factors[i].label, bbd.factors[j].label
-        );
-        figure(
-            &figures_dir.join(&name),
-            figures::surface_map(
-                bbd,
-                i,
-                j,
-                &calibration.optimum.coded,
-                calibration.target.value,
-                unit,
-            ),
-        )?;
-        figure_names.push(name);
-    }
-    let v = &calibration.validation;
-    figure(
-        &figures_dir.join("pile.svg"),
-        figures::pile_profiles(v.measured, v.simulated),
-    )?;
-    // The simulator's own picture of the validation pile, when it can draw one.
-    let study = runner.study();
-    let m = study.validation();
-    let planned = super::PlannedRun {
-        coded: calibration.optimum.coded.clone(),
-        values: calibration.optimum.actual.clone(),
-        replicate: 0,
-    };
-    let spec = runner.spec(
-        super::validation::STAGE,
-        0,
-        m.experiment,
-        &m.condition,
-        &planned,
-    )?;
-    let picture = runner
-        .simulator()
-        .pile_picture(&spec, &figures_dir)
-        .map_err(|e| CalibrateError::Io {
-            path: figures_dir.clone(),
-            reason: format!("the simulator could not draw the pile: {e}"),
-        })?
-        .and_then(|p| {
-            p.strip_prefix(out)
-                .ok()
-                .map(|r| r.to_string_lossy().into_owned())
-        });
-    write(
-        &out.join(REPORT_FILE),
-        &markdown(calibration, &figure_names, picture.as_deref()),
-    )?;
-    let json = serde_json::to_string_pretty(calibration).expect("a calibration serialises");
-    write(&out.join(JSON_FILE), &(json + "\n"))
+/// What the figures folder holds, for the report's links.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Figures {
+    /// Response-surface maps, file names inside the figures folder.
+    pub surfaces: Vec<String>,
+    /// The measured and simulated pile drawn as cone profiles (a repose angle only).
+    pub pile_schematic: bool,
+    /// The rig's own picture of the optimum, relative to the output folder.
+    pub picture: Option<String>,
 }
 
 /// The Markdown report.
-pub fn markdown(c: &Calibration, surfaces: &[String], picture: Option<&str>) -> String {
+pub fn markdown(c: &CalibrationJson, strongest: Option<(&str, &str)>, figures: &Figures) -> String {
     let mut s = String::new();
     let unit = &c.target.unit;
     let _ = writeln!(s, "# Calibration of `{}`\n", c.study);
@@ -173,9 +76,9 @@ pub fn markdown(c: &Calibration, surfaces: &[String], picture: Option<&str>) -> 
             if e.significant { "yes" } else { "no" }
         );
     }
-    let strongest = sc
-        .strongest()
-        .map_or("–".to_owned(), |e| format!("{} ({})", e.label, e.name));
+    let strongest = strongest.map_or("–".to_owned(), |(label, name)| {
+        format!("{label} ({name})")
+    });
     let _ = writeln!(
         s,
         "\nMost significant factor: **{strongest}**. Significant: {}. Carried on: {}.\n",
@@ -239,12 +142,13 @@ pub fn markdown(c: &Calibration, surfaces: &[String], picture: Option<&str>) -> 
         let _ = writeln!(s, "> Note: {note}\n");
     }
 
-    let b = &c.box_behnken;
-    let _ = writeln!(
-        s,
-        "## 3. Box–Behnken design and {} fit (seed 000 §3.5)\n",
-        b.model
-    );
+    let b = c.surface();
+    let (design, source) = if c.box_behnken.is_some() {
+        ("Box–Behnken", "seed 000 §3.5")
+    } else {
+        ("Central composite", "seed 001 §3.2")
+    };
+    let _ = writeln!(s, "## 3. {design} design and {} fit ({source})\n", b.model);
     let _ = writeln!(
         s,
         "Box: {}. {} runs, {} centre points.\n",
@@ -265,10 +169,10 @@ pub fn markdown(c: &Calibration, surfaces: &[String], picture: Option<&str>) -> 
         );
     }
     let _ = writeln!(s, "\n```text\n{}```\n", text_report(&b.anova, unit));
-    for name in surfaces {
+    for name in &figures.surfaces {
         let _ = writeln!(s, "![Response surface]({FIGURES_DIR}/{name})\n");
     }
-    runs_table(&mut s, "Box–Behnken runs", &b.runs, unit);
+    runs_table(&mut s, &format!("{design} runs"), &b.runs, unit);
 
     let o = &c.optimum;
     let _ = writeln!(s, "## 4. Optimum (desirability, seed 000 §3.6.1)\n");
@@ -318,9 +222,19 @@ pub fn markdown(c: &Calibration, surfaces: &[String], picture: Option<&str>) -> 
         if v.passed { "passed" } else { "FAILED" },
     );
     runs_table(&mut s, "Validation runs", &v.runs, unit);
-    let _ = writeln!(s, "![Measured vs simulated pile]({FIGURES_DIR}/pile.svg)\n");
-    if let Some(pic) = picture {
-        let _ = writeln!(s, "![Simulated pile at the optimum]({pic})\n");
+    if figures.pile_schematic {
+        let _ = writeln!(
+            s,
+            "![Measured vs simulated pile]({FIGURES_DIR}/{PILE_SCHEMATIC})\n"
+        );
+    }
+    if let Some(pic) = &figures.picture {
+        let what = if figures.pile_schematic {
+            "pile"
+        } else {
+            "run"
+        };
+        let _ = writeln!(s, "![Simulated {what} at the optimum]({pic})\n");
     }
     s
 }
@@ -334,7 +248,7 @@ fn fmt_value(v: f64) -> String {
     }
 }
 
-fn runs_table(s: &mut String, title: &str, runs: &[super::RunRecord], unit: &str) {
+fn runs_table(s: &mut String, title: &str, runs: &[RunJson], unit: &str) {
     let Some(first) = runs.first() else { return };
     let names: Vec<&String> = first.actual.keys().collect();
     let _ = writeln!(s, "<details><summary>{title}</summary>\n");

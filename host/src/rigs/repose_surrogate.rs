@@ -1,6 +1,7 @@
-//! A cheap, deterministic stand-in for the repose DEM experiment, built only from numbers
-//! seed 000 prints, so the calibration workflow can be tested end to end in milliseconds.
-//! It is **not** a DEM simulation and the report says so.
+//! A cheap, deterministic stand-in for the repose rig, built only from numbers seed 000
+//! prints, so the calibration workflow can be tested end to end in milliseconds. It is
+//! **not** a DEM simulation and the report says so. Its runs are specified exactly as the
+//! DEM repose rig's ([`PodBenchRig::run_spec`]), so a run has the same hash either way.
 //!
 //! The stacking angle (degrees) is ζ = L(x) + Q(x) + ε:
 //! - L, the global first-order trend over the eight factors of seed 000 Table 3: the
@@ -19,10 +20,12 @@
 //!   deterministically from the run's spec hash (so replicates with different random seeds
 //!   differ, and a replayed run gives the same bits).
 
+use std::time::Duration;
+
 use statrs::distribution::{ContinuousCDF, Normal};
 
-use super::simulator::{parameter_values, RunResult, SimulationError, Simulator};
-use crate::study::RunSpec;
+use super::pod_bench::{parameter_values, PodBenchRig};
+use crate::calibration::{Responses, Rig, RigError, RunRequest};
 
 /// Seed 000 Table 3 levels (low, high) of x1…x8, in registry order and SI units
 /// (x2 in Pa: 1.020–5.060 MPa).
@@ -78,6 +81,17 @@ impl Default for Seed000Surrogate {
     }
 }
 
+/// The surrogate as the repose rig of a study: the DEM rig's specifications, the
+/// surrogate's angles.
+pub struct SurrogateRig<'a> {
+    /// Specifies the runs.
+    pub pod: PodBenchRig<'a>,
+    /// The response function.
+    pub surrogate: Seed000Surrogate,
+    /// Test hook: time each run sleeps, so tests can interrupt a calibration part-way.
+    pub delay: Duration,
+}
+
 impl Seed000Surrogate {
     /// The noise-free angle ζ = L + Q (degrees) at parameter values `value(name)`.
     pub fn mean_angle_deg(&self, value: impl Fn(&str) -> Option<f64>) -> Result<f64, String> {
@@ -118,9 +132,12 @@ pub fn standard_normal_from(key: u64) -> f64 {
     Normal::standard().inverse_cdf(u)
 }
 
-impl Simulator for Seed000Surrogate {
+impl Rig for SurrogateRig<'_> {
     fn id(&self) -> String {
-        format!("seed000-surrogate-1(noise_sd_deg={})", self.noise_sd_deg)
+        format!(
+            "seed000-surrogate-1(noise_sd_deg={})",
+            self.surrogate.noise_sd_deg
+        )
     }
 
     fn description(&self) -> String {
@@ -128,21 +145,29 @@ impl Simulator for Seed000Surrogate {
             "seed 000 surrogate (NOT a DEM simulation): the first-order fit to seed 000 \
              Table 4 plus the curvature of eq. (22) inside the Table 7 box, with \
              deterministic N(0, {}²) scatter keyed by the spec hash",
-            self.noise_sd_deg
+            self.surrogate.noise_sd_deg
         )
     }
 
-    fn simulate(&self, spec: &RunSpec) -> Result<RunResult, SimulationError> {
-        let values = parameter_values(spec);
+    fn specification(&self, request: &RunRequest<'_>) -> Result<serde_json::Value, RigError> {
+        self.pod.specification(request)
+    }
+
+    fn run(&self, request: &RunRequest<'_>) -> Result<Responses, RigError> {
+        std::thread::sleep(self.delay);
+        let spec = self.pod.run_spec(request)?;
+        let values = parameter_values(&spec);
         let mean = self
+            .surrogate
             .mean_angle_deg(|n| values.get(n).copied())
-            .map_err(SimulationError)?;
-        let noise = self.noise_sd_deg * standard_normal_from(spec.spec_hash().0);
-        Ok(RunResult {
-            response: mean + noise,
-        })
+            .map_err(RigError)?;
+        let noise = self.surrogate.noise_sd_deg * standard_normal_from(spec.spec_hash().0);
+        Ok(Responses::from([(REPOSE_ANGLE.to_owned(), mean + noise)]))
     }
 }
+
+/// The response the surrogate answers.
+pub const REPOSE_ANGLE: &str = "repose_angle";
 
 #[cfg(test)]
 mod tests {

@@ -12,10 +12,10 @@ use crate::stats::StatsError;
 /// A calibration that could not finish.
 #[derive(Debug, Error)]
 pub enum CalibrateError {
-    /// The study cannot support the plan (too few varied parameters, an unknown mode, …).
+    /// The study cannot support the plan (too few varied parameters, no direction, …).
     #[error("the study cannot be calibrated: {0}")]
     Plan(String),
-    /// A run's specification could not be built from the study.
+    /// The rig refused a run's specification (an unknown parameter, a missing setting).
     #[error("{stage} run {run}: cannot build its specification: {reason}")]
     Spec {
         /// The stage (screening, steepest ascent, …).
@@ -39,7 +39,7 @@ pub enum CalibrateError {
         /// The limit in words.
         reason: String,
     },
-    /// The simulator failed on one run.
+    /// The rig failed on one run.
     #[error("{stage} run {run} (spec {hash}): the simulation failed: {reason}")]
     Simulation {
         /// The stage.
@@ -48,7 +48,7 @@ pub enum CalibrateError {
         run: usize,
         /// The run's spec hash.
         hash: String,
-        /// The simulator's message.
+        /// The rig's message.
         reason: String,
     },
     /// A design could not be built.

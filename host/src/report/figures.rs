@@ -1,12 +1,14 @@
 //! The report's SVG figures, drawn with `plotters`: the Pareto chart of screening effects,
 //! response-surface maps of the Box–Behnken fit, and the measured against the simulated
-//! pile profile. Each returns the SVG text; [`super::report`] writes it atomically.
+//! pile profile. Each returns the SVG text; [`super::write_calibration`] writes it
+//! atomically.
 
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::box_behnken::BoxBehnkenStage;
-use super::screening::Screening;
+use crate::calibration::plan::response_surface::ResponseSurface as FittedSurface;
+use crate::calibration::plan::screening::Screening;
+use crate::calibration::Factor;
 use crate::optimize::ResponseSurface;
 
 /// Figure size in pixels.
@@ -103,7 +105,7 @@ pub fn pareto(screening: &Screening, unit: &str) -> Result<String, String> {
 }
 
 /// The factor pairs to map: among the first three factors by |linear coefficient|.
-pub fn surface_pairs(bbd: &BoxBehnkenStage) -> Vec<(usize, usize)> {
+pub fn surface_pairs(bbd: &FittedSurface) -> Vec<(usize, usize)> {
     let k = bbd.factors.len();
     let mut order: Vec<usize> = (0..k).collect();
     let linear = |i: usize| bbd.anova.coefficients[i + 1].estimate.abs();
@@ -123,7 +125,7 @@ pub fn surface_pairs(bbd: &BoxBehnkenStage) -> Vec<(usize, usize)> {
 /// units, the other factors at the optimum `at` (coded); design points and the optimum
 /// are marked.
 pub fn surface_map(
-    bbd: &BoxBehnkenStage,
+    bbd: &FittedSurface,
     i: usize,
     j: usize,
     at: &[f64],
@@ -131,9 +133,7 @@ pub fn surface_map(
     unit: &str,
 ) -> Result<String, String> {
     let (fi, fj) = (&bbd.factors[i], &bbd.factors[j]);
-    let actual = |f: &super::screening::FactorInfo, x: f64| {
-        0.5 * (f.low + f.high) + x * 0.5 * (f.high - f.low)
-    };
+    let actual = |f: &Factor, x: f64| 0.5 * (f.low + f.high) + x * 0.5 * (f.high - f.low);
     let coded_at = |u: f64, v: f64| {
         let mut x = at.to_vec();
         x[i] = u;

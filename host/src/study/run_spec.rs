@@ -1,62 +1,24 @@
-//! A stable content hash of one fully specified simulation run, for the calibration cache
-//! (issue 4 §4: every finished run is stored under a hash of its full specification).
-//!
-//! [`RunSpec`] holds everything that can change a run's result: the experiment and its
+//! The full specification of one pod bench run ([`RunSpec`]): the experiment and its
 //! condition, every material and pair value after the run's parameter values are applied,
-//! the pod geometry, the mode (pod and sphere counts) and the simulation settings. Free-text
-//! notes (`source`) are left out, so editing a citation does not invalidate the cache.
-//!
-//! The hash is 64-bit FNV-1a (Fowler–Noll–Vo; offset basis 0xcbf29ce484222325, prime
-//! 0x100000001b3) over the canonical JSON of the spec: objects with keys sorted bytewise,
-//! no whitespace, numbers as serde_json prints them (shortest round-trip form, the same on
-//! every machine). FNV-1a is not cryptographic; it only has to tell different specs apart
-//! in a cache of thousands of runs, where a 64-bit hash collides with odds of about
-//! n²/2⁶⁵ ≈ 3e-12 at n = 10⁴. [`SPEC_FORMAT_VERSION`] is hashed too, so a change to what a
-//! spec means can retire old cache entries.
-//!
-//! ```
-//! use arachis::study::spec_hash::fnv1a_64;
-//! // Published FNV-1a test vectors.
-//! assert_eq!(fnv1a_64(b""), 0xcbf29ce484222325);
-//! assert_eq!(fnv1a_64(b"a"), 0xaf63dc4c8601ec8c);
-//! ```
+//! the pod geometry, the mode (pod and sphere counts) and the simulation settings.
+//! Free-text notes (`source`) are left out, so editing a citation does not invalidate the
+//! run cache. Its canonical JSON names the run ([`crate::calibration::spec_hash`]);
+//! [`SPEC_FORMAT_VERSION`] is part of it, so a change to what a spec means can retire old
+//! cache entries.
 
 use std::collections::BTreeMap;
-use std::fmt;
 
 use serde::Serialize;
-use serde_json::Value;
 
 use super::file_format::ShapeMix;
 use super::measurements::Experiment;
 use super::parameters::{for_property, lookup, Owner};
 use super::plan::{Mode, Simulation};
 use super::Study;
+use crate::calibration::spec_hash::{canonical_json, fnv1a_64, SpecHash};
 
 /// Version of the [`RunSpec`] layout; bump it when the meaning of a field changes.
 pub const SPEC_FORMAT_VERSION: u32 = 1;
-
-/// FNV-1a 64-bit offset basis.
-const FNV_OFFSET_BASIS: u64 = 0xcbf2_9ce4_8422_2325;
-/// FNV-1a 64-bit prime.
-const FNV_PRIME: u64 = 0x0000_0100_0000_01b3;
-
-/// 64-bit FNV-1a of `bytes`.
-pub fn fnv1a_64(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(FNV_OFFSET_BASIS, |h, b| {
-        (h ^ u64::from(*b)).wrapping_mul(FNV_PRIME)
-    })
-}
-
-/// A run's content hash; prints as 16 lower-case hex digits.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct SpecHash(pub u64);
-
-impl fmt::Display for SpecHash {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{:016x}", self.0)
-    }
-}
 
 /// Material values of one run.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -131,47 +93,12 @@ pub struct RunSpec {
 impl RunSpec {
     /// The canonical JSON text the hash is taken over.
     pub fn canonical_json(&self) -> String {
-        let value = serde_json::to_value(self).expect("a run spec serialises");
-        let mut out = String::new();
-        write_canonical(&value, &mut out);
-        out
+        canonical_json(&serde_json::to_value(self).expect("a run spec serialises"))
     }
 
     /// FNV-1a 64 of [`RunSpec::canonical_json`].
     pub fn spec_hash(&self) -> SpecHash {
         SpecHash(fnv1a_64(self.canonical_json().as_bytes()))
-    }
-}
-
-/// Writes `value` as JSON with object keys sorted and no whitespace, whatever the map type
-/// serde_json was built with.
-pub fn write_canonical(value: &Value, out: &mut String) {
-    match value {
-        Value::Object(map) => {
-            let mut keys: Vec<&String> = map.keys().collect();
-            keys.sort();
-            out.push('{');
-            for (i, k) in keys.into_iter().enumerate() {
-                if i > 0 {
-                    out.push(',');
-                }
-                out.push_str(&Value::String(k.clone()).to_string());
-                out.push(':');
-                write_canonical(&map[k], out);
-            }
-            out.push('}');
-        }
-        Value::Array(items) => {
-            out.push('[');
-            for (i, item) in items.iter().enumerate() {
-                if i > 0 {
-                    out.push(',');
-                }
-                write_canonical(item, out);
-            }
-            out.push(']');
-        }
-        scalar => out.push_str(&scalar.to_string()),
     }
 }
 
