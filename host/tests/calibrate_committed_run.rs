@@ -20,10 +20,11 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use arachis::calibration::{calibrate, Executor, Progress, Rig, RunRequest};
-use arachis::experiments::ModeName;
 use arachis::report::{write_calibration, Provenance};
 use arachis::rigs::pod_bench::PodBenchRig;
-use arachis::study::{Experiment, Study};
+use arachis::rigs::pod_world::ModeName;
+use arachis::rigs::repose_cylinder::TEST as REPOSE;
+use arachis::study::Study;
 
 const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
 /// The largest accepted validation error, % (issue 4 must-show).
@@ -50,14 +51,14 @@ fn the_committed_quick_dem_calibration_replays_byte_identical_and_validates_with
     let committed_calibration: serde_json::Value = serde_json::from_slice(&committed_json).unwrap();
     let first_validation = &committed_calibration["validation"]["runs"][0];
 
-    let dem = PodBenchRig::new(&study, Experiment::Repose, ModeName::Quick);
-    let problem = study.problem(&dem, &dem);
+    let dem = PodBenchRig::new(study.pod_world().unwrap(), REPOSE, ModeName::Quick);
+    let problem = study.problem(&dem, &dem).unwrap();
     let executor = Executor::new(Some(1), Some(&out.join("runs")), Progress::hidden()).unwrap();
     let (outcome, resimulated) = rayon::join(
         || {
             let outcome = calibrate(&problem, &executor).unwrap();
             let provenance = Provenance {
-                study: study.file().study.name.clone(),
+                study: study.name().to_owned(),
                 mode: "quick".into(),
             };
             write_calibration(&problem, &outcome.stages, &provenance, &out).unwrap();
@@ -75,7 +76,7 @@ fn the_committed_quick_dem_calibration_replays_byte_identical_and_validates_with
                 condition: &condition,
                 replicate: first_validation["replicate"].as_u64().unwrap() as u32,
             };
-            let fresh = PodBenchRig::new(&study, Experiment::Repose, ModeName::Quick);
+            let fresh = PodBenchRig::new(study.pod_world().unwrap(), REPOSE, ModeName::Quick);
             assert_eq!(
                 fresh.run_spec(&request).unwrap().spec_hash().to_string(),
                 first_validation["spec_hash"].as_str().unwrap(),

@@ -14,8 +14,10 @@
 use std::collections::BTreeMap;
 
 use arachis::calibration::{Rig, RunRequest};
-use arachis::experiments::{run_experiment, ExperimentKind, ModeName, RunOptions};
+use arachis::rigs::catalogue::run_experiment;
 use arachis::rigs::pod_bench::{parameter_values, PodBenchRig, PILE_PICTURE};
+use arachis::rigs::pod_world::{ModeName, RunOptions};
+use arachis::rigs::repose_cylinder::TEST as REPOSE;
 use arachis::study::Experiment;
 
 mod quick_pile_support;
@@ -37,19 +39,20 @@ fn dem_adapter_answers_like_the_rig_and_redraws_the_same_pile() {
         condition: &condition,
         replicate: 0,
     };
-    let dem = PodBenchRig::new(&study, Experiment::Repose, ModeName::Quick);
+    let dem = PodBenchRig::new(study.pod_world().unwrap(), REPOSE, ModeName::Quick);
     let spec = dem.run_spec(&request).unwrap();
     let answered = dem.run(&request).unwrap()["repose_angle"];
 
     // The direct rig run and the redraw by a fresh adapter (nothing in memory, as after a
     // resumed calibration) run side by side.
     let dir = tempfile::tempdir().unwrap();
-    let fresh = PodBenchRig::new(&study, Experiment::Repose, ModeName::Quick);
+    let fresh = PodBenchRig::new(study.pod_world().unwrap(), REPOSE, ModeName::Quick);
     let (direct, path) = rayon::join(
         || {
             run_experiment(
-                &study,
-                ExperimentKind::Repose,
+                &study.pod_world().unwrap(),
+                Experiment::Repose,
+                &condition,
                 &parameter_values(&spec),
                 ModeName::Quick,
                 spec.simulation.random_seed,

@@ -10,11 +10,12 @@ use arachis::calibration::{
     calibrate, CalibrateError, Executor, Outcome, Progress, Responses, Rig, RigError, RunRequest,
     SpecHash,
 };
-use arachis::experiments::ModeName;
 use arachis::report::{write_calibration, CalibrationJson, Provenance};
 use arachis::rigs::pod_bench::PodBenchRig;
+use arachis::rigs::pod_world::ModeName;
+use arachis::rigs::repose_cylinder::TEST as REPOSE;
 use arachis::rigs::repose_surrogate::{standard_normal_from, Seed000Surrogate, SurrogateRig};
-use arachis::study::{Experiment, Study};
+use arachis::study::Study;
 
 const STUDY: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
@@ -28,7 +29,7 @@ fn study() -> Study {
 /// The surrogate as `study`'s repose rig.
 fn surrogate(study: &Study, noise_sd_deg: f64) -> SurrogateRig<'_> {
     SurrogateRig {
-        pod: PodBenchRig::new(study, Experiment::Repose, ModeName::Quick),
+        pod: PodBenchRig::new(study.pod_world().unwrap(), REPOSE, ModeName::Quick),
         surrogate: Seed000Surrogate { noise_sd_deg },
         delay: Duration::ZERO,
     }
@@ -48,11 +49,11 @@ fn calibrate_into(
     out: &Path,
     jobs: usize,
 ) -> Result<Done, CalibrateError> {
-    let problem = study.problem(rig, rig);
+    let problem = study.problem(rig, rig).unwrap();
     let executor = Executor::new(Some(jobs), Some(&out.join("runs")), Progress::hidden())?;
     let outcome = calibrate(&problem, &executor)?;
     let provenance = Provenance {
-        study: study.file().study.name.clone(),
+        study: study.name().to_owned(),
         mode: "quick".into(),
     };
     let json = write_calibration(&problem, &outcome.stages, &provenance, out)?;

@@ -119,10 +119,21 @@ fn study_check_prints_what_it_printed_at_c5d1f03() {
             &stdout_of(&["study", "check", &study]),
             &golden(&format!("study-check/study-check-{name}.txt")),
         );
-        same_bytes(
-            &format!("study check --json {name}"),
-            &stdout_of(&["study", "check", &study, "--json"]),
-            &golden(&format!("study-check/study-check-{name}.json")),
-        );
     }
+    let pods = "testdata/peanut-pods-saline/study.toml";
+    same_bytes(
+        "study check --json (pods)",
+        &stdout_of(&["study", "check", pods, "--json"]),
+        &golden("study-check/study-check-peanut-pods-saline.json"),
+    );
+    // One study format (issue 17): the pull-off study's JSON is now the pod study's layout,
+    // `{format, study, derived}`, its content the same as c5d1f03 printed.
+    let plant = "testdata/peanut-plant/study.toml";
+    let now: serde_json::Value =
+        serde_json::from_slice(&stdout_of(&["study", "check", plant, "--json"])).unwrap();
+    let was: serde_json::Value =
+        serde_json::from_slice(&golden("study-check/study-check-peanut-plant.json")).unwrap();
+    assert_eq!(now["study"], was, "the pull-off study's content changed");
+    assert_eq!(now["format"], "arachis-study-1");
+    assert_eq!(now["derived"]["varied"].as_array().unwrap().len(), 9);
 }

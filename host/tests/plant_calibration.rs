@@ -5,31 +5,21 @@
 //! composite, α = 1.414, 5 centre points → optimum → validation pull) of the shipped study
 //! on the fixed-point pull-off rig; about 40 pulls of a few hundredths of a second each.
 
-use arachis::calibration::{calibrate, Executor, Objective, Problem, Progress};
-use arachis::plant_study::PlantStudy;
+use arachis::calibration::{calibrate, Executor, Progress};
 use arachis::report::pull_off::{markdown, PlantCalibration};
-use arachis::rigs::pull_off::{DETACHMENT_FORCE, SEED_SIGNIFICANT};
+use arachis::rigs::pull_off::PullOffRig;
+use arachis::rigs::pull_off::SEED_SIGNIFICANT;
+use arachis::study::Study;
 
 /// The shipped study calibrated with `named` factors for the path and the design (`None`:
 /// the screening's choice).
 fn calibrated(named: Option<Vec<String>>) -> PlantCalibration {
-    let mut study = PlantStudy::shipped();
+    let mut study = Study::shipped_pull_off();
     study.set_named_factors(named, "this test").unwrap();
-    let rig = study.rig();
-    let target = || Objective {
-        rig: &rig,
-        experiment: "pull_off".into(),
-        quantity: DETACHMENT_FORCE.into(),
-        unit: "N".into(),
-        value: study.file().measurement.value_n,
-        condition: Default::default(),
+    let rig = PullOffRig {
+        base: study.pull_off_setup().unwrap(),
     };
-    let problem = Problem {
-        factors: study.factors(),
-        plan: study.plan_settings(),
-        target: target(),
-        validation: target(),
-    };
+    let problem = study.problem(&rig, &rig).unwrap();
     let executor = Executor::new(None, None, Progress::hidden()).unwrap();
     let outcome = calibrate(&problem, &executor).unwrap();
     PlantCalibration::new(&problem, &outcome.stages, "test", &rig)

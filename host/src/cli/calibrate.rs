@@ -6,9 +6,9 @@
 //!
 //! The study is loaded and validated before anything runs, so a bad file stops with its
 //! file, key and reason. Rerunning into the same folder replays finished runs from
-//! `runs/`, so an interrupted calibration resumes and ends with the same bytes. A pod study
-//! writes `calibration.json`; a pull-off study (`[study] kind = "pull_off"`) writes seed
-//! 001's `plant-calibration.json` for one release.
+//! `runs/`, so an interrupted calibration resumes and ends with the same bytes. A study
+//! writes `calibration.json`, except a pull-off study (seed 001's, with `[rig]`), which
+//! writes seed 001's `plant-calibration.json` for one release.
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -16,14 +16,14 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, ensure, Context};
 use clap::ValueEnum;
 
-use crate::calibration::{calibrate, Executor, Objective, Outcome, Problem, Progress, Rig};
-use crate::experiments::ModeName;
-use crate::plant_study::PlantStudy;
+use crate::calibration::{calibrate, Executor, Outcome, Problem, Progress, Rig};
 use crate::report::{pull_off, write_calibration, Provenance};
+use crate::rigs::kind::RigOptions;
 use crate::rigs::pod_bench::PodBenchRig;
-use crate::rigs::pull_off::{DETACHMENT_FORCE, NAME as PULL_OFF};
+use crate::rigs::pod_world::{Experiment, ModeName};
+use crate::rigs::pull_off::PullOffRig;
 use crate::rigs::repose_surrogate::{Seed000Surrogate, SurrogateRig};
-use crate::study::{Experiment, Study};
+use crate::study::Study;
 
 /// Which simulator answers the runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -97,70 +97,109 @@ impl Args {
 
 /// Runs `arachis calibrate`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    if crate::plant_study::is_plant_study(&args.study) {
-        let study = PlantStudy::load(&args.study)?;
-        return calibrate_pull_off(&args, &study);
-    }
-    calibrate_pods(&args, &Study::load(&args.study)?)
+    calibrate_study(&args, &Study::load(&args.study)?)
 }
 
-/// A pod bench rig of the study, or the surrogate standing in for its repose rig.
-fn pod_rig<'a>(
-    args: &Args,
-    study: &'a Study,
-    experiment: Experiment,
-    mode: ModeName,
-) -> anyhow::Result<Box<dyn Rig + 'a>> {
-    let pod = PodBenchRig::new(study, experiment, mode);
-    match args.simulator {
-        SimulatorChoice::Dem => Ok(Box::new(pod)),
-        SimulatorChoice::Surrogate => {
-            ensure!(
-                experiment == Experiment::Repose,
-                "the surrogate stands in for seed 000's repose runs only, not {experiment}"
-            );
-            Ok(Box::new(SurrogateRig {
-                pod,
-                surrogate: Seed000Surrogate::default(),
-                delay: Duration::from_millis(args.surrogate_delay_ms),
-            }))
-        }
-    }
-}
-
-fn calibrate_pods(args: &Args, study: &Study) -> anyhow::Result<()> {
-    let plan = &study.file().plan;
-    let mode_name = args.mode().unwrap_or_else(|| plan.mode.clone());
-    if !plan.modes.contains_key(&mode_name) {
-        let known: Vec<&String> = plan.modes.keys().collect();
+/// The run mode of `study` the flags ask for (checked against its `[plan.modes]`), `None`
+/// for a study whose rigs have no modes.
+fn mode(args: &Args, study: &Study) -> anyhow::Result<Option<(String, ModeName)>> {
+    let plan = study.file().plan.as_ref();
+    let Some(modes) = plan.map(|p| &p.modes).filter(|m| !m.is_empty()) else {
+        ensure!(
+            args.mode().is_none(),
+            "{}: a study without [plan.modes] (a pull-off study: every pull is the same rig) \
+             has no run modes (--quick, --full, --mode)",
+            args.study.display()
+        );
+        return Ok(None);
+    };
+    let name = args
+        .mode()
+        .or_else(|| plan.and_then(|p| p.mode.clone()))
+        .unwrap_or_else(|| ModeName::Quick.as_str().to_owned());
+    if !modes.contains_key(&name) {
+        let known: Vec<&String> = modes.keys().collect();
         bail!(
-            "calibrating {}: the study cannot be calibrated: no mode '{mode_name}' in \
+            "calibrating {}: the study cannot be calibrated: no mode '{name}' in \
              [plan.modes] (the study has {known:?})",
             args.study.display()
         );
     }
-    let mode: ModeName = mode_name.parse()?;
-    let out = args.out.clone().unwrap_or_else(|| {
-        PathBuf::from(format!(
-            "calibration-{}-{mode_name}",
-            study.file().study.name
-        ))
-    });
-    let (target_m, validation_m) = (study.target(), study.validation());
-    let target_rig = pod_rig(args, study, target_m.experiment, mode)?;
-    let other_rig = (validation_m.experiment != target_m.experiment)
-        .then(|| pod_rig(args, study, validation_m.experiment, mode))
+    let parsed = name.parse()?;
+    Ok(Some((name, parsed)))
+}
+
+/// The rig of `experiment`, or the surrogate standing in for the repose rig.
+fn rig<'a>(
+    args: &Args,
+    study: &'a Study,
+    experiment: &str,
+    mode: Option<ModeName>,
+) -> anyhow::Result<Box<dyn Rig + 'a>> {
+    if args.simulator == SimulatorChoice::Dem {
+        let options = RigOptions {
+            mode,
+            ..RigOptions::default()
+        };
+        return Ok(study.rig(experiment, &options)?);
+    }
+    let world = study
+        .pod_world()
+        .filter(|_| experiment == Experiment::Repose.name())
+        .with_context(|| {
+            format!(
+                "{}: the surrogate stands in for seed 000's repose runs only, not {experiment}",
+                args.study.display()
+            )
+        })?;
+    Ok(Box::new(SurrogateRig {
+        pod: PodBenchRig::new(
+            world,
+            crate::rigs::repose_cylinder::TEST,
+            mode.unwrap_or(ModeName::Quick),
+        ),
+        surrogate: Seed000Surrogate::default(),
+        delay: Duration::from_millis(args.surrogate_delay_ms),
+    }))
+}
+
+/// Calibrates `study` as `args` say, writes its report and prints its summary.
+pub fn calibrate_study(args: &Args, study: &Study) -> anyhow::Result<()> {
+    let mode = mode(args, study)?;
+    let (Some(target), Some(validation)) = (study.target(), study.validation()) else {
+        bail!(
+            "{}: the study has no [plan]: nothing to calibrate",
+            args.study.display()
+        );
+    };
+    let modal = mode.as_ref().map(|(_, m)| *m);
+    let target_rig = rig(args, study, &target.experiment, modal)?;
+    let other_rig = (validation.experiment != target.experiment)
+        .then(|| rig(args, study, &validation.experiment, modal))
         .transpose()?;
-    let problem = study.problem(
-        target_rig.as_ref(),
-        other_rig.as_deref().unwrap_or(target_rig.as_ref()),
-    );
+    let problem = study
+        .problem(
+            target_rig.as_ref(),
+            other_rig.as_deref().unwrap_or(target_rig.as_ref()),
+        )
+        .with_context(|| format!("{}: the study has no [plan]", args.study.display()))?;
+    let name = study.name();
+    let out = args.out.clone().unwrap_or_else(|| {
+        PathBuf::from(match &mode {
+            Some((m, _)) => format!("calibration-{name}-{m}"),
+            None => format!("calibration-{name}"),
+        })
+    });
     let started = Instant::now();
     let executor = args.executor(&out)?;
     let outcome = run_problem(args, &problem, &executor)?;
+    if let Some(base) = study.pull_off_setup() {
+        let rig = PullOffRig { base };
+        return report_pull_off(args, &problem, &outcome, name, &rig, &out, started);
+    }
     let provenance = Provenance {
-        study: study.file().study.name.clone(),
-        mode: mode_name,
+        study: name.to_owned(),
+        mode: mode.map_or("-".to_owned(), |(m, _)| m),
     };
     let c = write_calibration(&problem, &outcome.stages, &provenance, &out)?;
     let strongest = outcome
@@ -239,47 +278,19 @@ fn validation_verdict(args: &Args, passed: bool, psi: f64, limit: f64) -> anyhow
     Ok(())
 }
 
-/// Calibrates a pull-off study (seed 001's plan on the tensile test).
-pub fn calibrate_pull_off(args: &Args, study: &PlantStudy) -> anyhow::Result<()> {
-    ensure!(
-        args.mode().is_none(),
-        "{}: a pull-off study has no run modes (--quick, --full, --mode): every pull is the \
-         same rig",
-        args.study.display()
-    );
-    ensure!(
-        args.simulator == SimulatorChoice::Dem,
-        "{}: the surrogate stands in for seed 000's repose runs only; a pull-off study runs \
-         the DEM tensile test",
-        args.study.display()
-    );
-    let name = &study.file().study.name;
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| PathBuf::from(format!("calibration-{name}")));
-    let rig = study.rig();
-    let measured = study.file().measurement.value_n;
-    let target = || Objective {
-        rig: &rig,
-        experiment: PULL_OFF.to_owned(),
-        quantity: DETACHMENT_FORCE.to_owned(),
-        unit: "N".to_owned(),
-        value: measured,
-        condition: Default::default(),
-    };
-    let problem = Problem {
-        factors: study.factors(),
-        plan: study.plan_settings(),
-        target: target(),
-        validation: target(),
-    };
-    let started = Instant::now();
-    let executor = args.executor(&out)?;
-    let outcome = run_problem(args, &problem, &executor)?;
+/// Writes seed 001's pull-off report and prints its summary.
+fn report_pull_off(
+    args: &Args,
+    problem: &Problem<'_>,
+    outcome: &Outcome,
+    name: &str,
+    rig: &PullOffRig,
+    out: &Path,
+    started: Instant,
+) -> anyhow::Result<()> {
     let wall = started.elapsed().as_secs_f64();
-    let cal = pull_off::PlantCalibration::new(&problem, &outcome.stages, name, &rig);
-    pull_off::write_files(&cal, &out)
+    let cal = pull_off::PlantCalibration::new(problem, &outcome.stages, name, rig);
+    pull_off::write_files(&cal, out)
         .with_context(|| format!("cannot write the report into {}", out.display()))?;
 
     let s = &cal.screening;

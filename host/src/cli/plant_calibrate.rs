@@ -15,9 +15,9 @@ use std::path::PathBuf;
 use anyhow::{ensure, Context};
 use serde_json::json;
 
-use super::calibrate::{calibrate_pull_off, SimulatorChoice};
-use crate::plant_study::PlantStudy;
+use super::calibrate::{calibrate_study, SimulatorChoice};
 use crate::report::pull_off::JSON_FILE;
+use crate::study::Study;
 
 /// What the alias prints on stderr.
 pub const ALIAS_NOTICE: &str = "note: `arachis plant-calibrate` is an alias, kept for this \
@@ -54,8 +54,12 @@ pub struct Args {
 /// Runs `arachis plant-calibrate`.
 pub fn run(args: Args) -> anyhow::Result<()> {
     eprintln!("{ALIAS_NOTICE}");
-    let mut study = PlantStudy::shipped();
-    let rig = &study.file().rig;
+    let mut study = Study::shipped_pull_off();
+    let rig = study
+        .file()
+        .rig
+        .as_ref()
+        .context("the built-in study has its [rig]")?;
     let (speed, angle) = (
         args.speed.unwrap_or(rig.pull_speed_m_s),
         args.angle.unwrap_or(rig.pull_angle_deg),
@@ -88,7 +92,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         simulator: SimulatorChoice::Dem,
         surrogate_delay_ms: 0,
     };
-    let verdict = calibrate_pull_off(&calibrate, &study);
+    let verdict = calibrate_study(&calibrate, &study);
     let path = args.out.join(JSON_FILE);
     if !path.exists() {
         return verdict;

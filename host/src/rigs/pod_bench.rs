@@ -1,7 +1,8 @@
-//! The pod bench rigs of seed 000 as calibration rigs: the repose angle by cylinder lifting
-//! (§2.7), sliding on a tilting plate (§2.6.2) and compression between two plates (§2.5.3),
-//! each a virtual experiment of `crate::experiments` over a pod study's materials, pods,
-//! pairs, run mode and simulation settings.
+//! The pod bench rigs behind the engine's [`Rig`] interface: the repose angle by cylinder
+//! lifting ([`super::repose_cylinder`], seed 000 §2.7), sliding on a tilting plate
+//! ([`super::incline`], §2.6.2) and compression between two plates
+//! ([`super::compression`], §2.5.3), each over a [`PodWorld`] in one run mode.
+//! [`run_experiment`] runs one of them directly (the `simulate` command).
 //!
 //! A run's specification is the study's full [`RunSpec`] with the run's values applied and
 //! the placement seed advanced by the replicate, so every pile is named by what makes it.
@@ -13,23 +14,166 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-use crate::calibration::{Responses, Rig, RigError, RunRequest, SpecHash};
-use crate::experiments::picture::write_pile_picture;
-use crate::experiments::repose::ReposeDetails;
-use crate::experiments::{
-    run_experiment, ModeName, Observation, ObservationDetails, RunOptions, TemplateCache,
+use super::kind::{ConditionKey, Quantity, RigKind, RigOptions, WorldKind, Worlds};
+use super::pod_world::observation::ReposeDetails;
+use super::pod_world::parameters::Owner;
+use super::pod_world::setup::RunInputs;
+use super::pod_world::{
+    check_values, Experiment, ExperimentError, ModeName, Observation, ObservationDetails,
+    ParameterValues, PodWorld, RunOptions, RunSpec, TemplateCache, REGISTRY,
 };
-use crate::study::parameters::{Owner, REGISTRY};
-use crate::study::{Experiment, RunSpec, Study};
+use super::repose_picture::write_pile_picture;
+use crate::calibration::{Condition, Responses, Rig, RigError, RunRequest, SpecHash};
+use crate::limits::Limits;
 
 /// File name of the simulated pile's picture in the figures folder (SVG: it carries the
 /// caption, which a PNG cannot, see `experiments::picture`).
 pub const PILE_PICTURE: &str = "pile_simulated.svg";
 
-/// One pod bench rig of a study, in one run mode.
+/// A pod bench test: its experiment and the function that runs it.
+#[derive(Debug, Clone, Copy)]
+pub struct PodTest {
+    /// The experiment.
+    pub experiment: Experiment,
+    /// Runs it on resolved inputs with a placement seed.
+    pub run: fn(&RunInputs, u64, &RunOptions) -> Result<Observation, ExperimentError>,
+}
+
+/// A test that is measurable but not simulated yet.
+fn not_built(inputs: &RunInputs, _: u64, _: &RunOptions) -> Result<Observation, ExperimentError> {
+    Err(ExperimentError::NotBuilt {
+        experiment: inputs.spec.experiment.name(),
+    })
+}
+
+/// The plate drop's test (not built yet).
+pub const PLATE_DROP_TEST: PodTest = PodTest {
+    experiment: Experiment::PlateDrop,
+    run: not_built,
+};
+
+/// The rolling test (not built yet).
+pub const ROLLING_TEST: PodTest = PodTest {
+    experiment: Experiment::Rolling,
+    run: not_built,
+};
+
+/// Runs `test` over `world` at `condition` with the parameters in `values` (registry
+/// keys → SI values, overriding the world's held values), in `mode`, with placement seed
+/// `seed`.
+///
+/// Pure and deterministic: the same arguments give the same [`Observation`] bit for bit,
+/// on any thread. Errors: an unknown key or a value outside its limits
+/// ([`ExperimentError::UnknownParameter`], [`ExperimentError::BadValue`]) before anything
+/// is simulated; a core refusal or step failure with the simulated time.
+pub fn run_experiment_with(
+    world: &PodWorld<'_>,
+    test: PodTest,
+    condition: &Condition,
+    values: &ParameterValues,
+    mode: ModeName,
+    seed: u64,
+    options: &RunOptions,
+) -> Result<Observation, ExperimentError> {
+    let own_cache;
+    let cache = match &options.templates {
+        Some(c) => c.as_ref(),
+        None => {
+            own_cache = TemplateCache::new();
+            &own_cache
+        }
+    };
+    let inputs = RunInputs::resolve(world, test.experiment, condition, values, mode, cache)?;
+    (test.run)(&inputs, seed, options)
+}
+
+/// Water content, wet basis (seed 000 §2.1: 36.72 %): a condition of every pod rig.
+pub const MOISTURE: ConditionKey = ConditionKey::new(
+    "moisture_pct",
+    "water content, % wet basis",
+    Limits::NonNegative,
+);
+
+/// Builds the pod bench rig of `test` over a study's pod world.
+pub fn build<'a>(
+    worlds: &Worlds<'a>,
+    options: &RigOptions,
+    test: PodTest,
+) -> Result<Box<dyn Rig + 'a>, RigError> {
+    let experiment = test.experiment;
+    let world = worlds.pods.ok_or_else(|| {
+        RigError(format!(
+            "the {experiment} rig simulates pods: the study needs [materials], [pods], [pairs], \
+             [plan.modes] and [plan.simulation]"
+        ))
+    })?;
+    Ok(Box::new(PodBenchRig::new(
+        world,
+        test,
+        options.mode.unwrap_or(ModeName::Quick),
+    )))
+}
+
+/// The drop on the 45° plate (restitution, seed 000 §2.6.1): measurable, not yet simulated.
+pub const PLATE_DROP: RigKind = RigKind {
+    name: "plate_drop",
+    about: "pod dropped on the 45° steel plate (restitution, seed 000 §2.6.1; not built yet)",
+    world: WorldKind::Pods,
+    random: true,
+    quantities: &[
+        Quantity {
+            name: "restitution",
+            unit: "-",
+            label: "restitution, -",
+        },
+        Quantity {
+            name: "rebound_distance",
+            unit: "mm",
+            label: "rebound distance, mm",
+        },
+    ],
+    conditions: &[
+        ConditionKey::new("drop_height_mm", "drop height, mm", Limits::Positive),
+        ConditionKey::new("plate_angle_deg", "plate angle, degrees", Limits::Positive),
+        MOISTURE,
+    ],
+    parameters: &[],
+    build: |w, o| build(w, o, PLATE_DROP_TEST),
+};
+
+/// Rolling on an incline then a flat (rolling friction, seed 000 §2.6.3): measurable, not
+/// yet simulated.
+pub const ROLLING: RigKind = RigKind {
+    name: "rolling",
+    about: "pod rolled down an incline onto a flat (rolling friction, seed 000 §2.6.3; not \
+            built yet)",
+    world: WorldKind::Pods,
+    random: true,
+    quantities: &[
+        Quantity {
+            name: "rolling_distance",
+            unit: "mm",
+            label: "rolling distance, mm",
+        },
+        Quantity {
+            name: "rolling_friction",
+            unit: "-",
+            label: "rolling friction, -",
+        },
+    ],
+    conditions: &[
+        ConditionKey::new("slope_deg", "slope, degrees", Limits::Positive),
+        ConditionKey::new("release_height_mm", "release height, mm", Limits::Positive),
+        MOISTURE,
+    ],
+    parameters: &[],
+    build: |w, o| build(w, o, ROLLING_TEST),
+};
+
+/// One pod bench rig of a world, in one run mode.
 pub struct PodBenchRig<'a> {
-    study: &'a Study,
-    experiment: Experiment,
+    world: PodWorld<'a>,
+    test: PodTest,
     mode: ModeName,
     templates: Arc<TemplateCache>,
     /// Repose details of the runs simulated in this process, for the pile picture.
@@ -37,11 +181,11 @@ pub struct PodBenchRig<'a> {
 }
 
 impl<'a> PodBenchRig<'a> {
-    /// The rig of `experiment` over `study` in `mode`.
-    pub fn new(study: &'a Study, experiment: Experiment, mode: ModeName) -> Self {
+    /// The rig of `test` over `world` in `mode`.
+    pub fn new(world: PodWorld<'a>, test: PodTest, mode: ModeName) -> Self {
         Self {
-            study,
-            experiment,
+            world,
+            test,
             mode,
             templates: Arc::new(TemplateCache::new()),
             details: Mutex::new(BTreeMap::new()),
@@ -50,12 +194,11 @@ impl<'a> PodBenchRig<'a> {
 
     /// The full specification of `request`.
     pub fn run_spec(&self, request: &RunRequest<'_>) -> Result<RunSpec, RigError> {
-        crate::experiments::check_values(self.study, request.values)
-            .map_err(|e| RigError(e.to_string()))?;
+        check_values(&self.world, request.values).map_err(|e| RigError(e.to_string()))?;
         let mut spec = self
-            .study
+            .world
             .run_spec(
-                self.experiment,
+                self.test.experiment,
                 request.condition,
                 request.values,
                 self.mode.as_str(),
@@ -73,9 +216,10 @@ impl<'a> PodBenchRig<'a> {
             vtk_dir: None,
             templates: Some(Arc::clone(&self.templates)),
         };
-        run_experiment(
-            self.study,
-            spec.experiment,
+        run_experiment_with(
+            &self.world,
+            self.test,
+            &spec.condition,
             &parameter_values(spec),
             self.mode,
             spec.simulation.random_seed,
@@ -132,7 +276,7 @@ impl Rig for PodBenchRig<'_> {
     }
 
     fn description(&self) -> String {
-        let what = match self.experiment {
+        let what = match self.test.experiment {
             Experiment::Repose => "repose by cylinder lifting, seed 000 §2.7",
             Experiment::InclineSlide => "sliding on a tilting plate, seed 000 §2.6.2",
             Experiment::Compression => "compression between two plates, seed 000 §2.5.3",
@@ -160,7 +304,7 @@ impl Rig for PodBenchRig<'_> {
     }
 
     fn picture(&self, request: &RunRequest<'_>, dir: &Path) -> Result<Option<PathBuf>, RigError> {
-        if self.experiment != Experiment::Repose {
+        if self.test.experiment != Experiment::Repose {
             return Ok(None);
         }
         let spec = self.run_spec(request)?;

@@ -24,6 +24,7 @@ use arachis_core::scenario::pull_off::{PullOff, PullOffResult};
 use arachis_core::scenario::ScenarioError;
 use serde_json::json;
 
+use super::kind::{Quantity, RigKind, WorldKind};
 use crate::arena::{OwnedBonds, OwnedStorage};
 use crate::calibration::{ParameterValues, Responses, Rig, RigError, RunRequest};
 use crate::limits::Limits;
@@ -34,6 +35,34 @@ pub const NAME: &str = "pull_off";
 pub const DETACHMENT_FORCE: &str = "detachment_force";
 /// The independent check: σc·πRb² of the run's junction, N.
 pub const PREDICTED_AXIAL_FORCE: &str = "predicted_axial_force";
+
+/// This rig in the catalogue.
+pub const KIND: RigKind = RigKind {
+    name: NAME,
+    about: "a bonded pod pulled off its clamped stalk (tensile test, seed 001 §2.3)",
+    world: WorldKind::PullOff,
+    random: false,
+    quantities: &[
+        Quantity {
+            name: DETACHMENT_FORCE,
+            unit: "N",
+            label: "detachment force, N",
+        },
+        Quantity {
+            name: PREDICTED_AXIAL_FORCE,
+            unit: "N",
+            label: "σc·πRb² of the junction, N",
+        },
+    ],
+    conditions: &[],
+    parameters: &[],
+    build: |worlds, _| {
+        let base = worlds.pull_off.ok_or_else(|| {
+            RigError("the pull-off rig needs the study's [rig] and its topology".into())
+        })?;
+        Ok(Box::new(PullOffRig { base }))
+    },
+};
 
 /// Step budget of one pull: 50 ms of pulling at dt 5e-7 s, 5 mm at 0.1 m/s, about 20 times
 /// the junction's stretch at break in the seed's ranges.

@@ -1,10 +1,12 @@
 //! A human-readable summary of a validated study: what is measured, what varies, and the
-//! plan, in the units a user reads (MPa for moduli, mm for sizes).
+//! plan, in the units a user reads (MPa for moduli, mm for sizes): a pod study's, a
+//! pull-off study's, a diagnosis study's.
 
 use std::fmt;
 
-use super::plan::{ModelOrder, ScreeningDesign};
+use super::plan::{ModelOrder, Plan};
 use super::Study;
+use crate::rigs::pod_world::Pods;
 
 /// Significant digits of derived numbers in the summary.
 const SUMMARY_DIGITS: i32 = 4;
@@ -31,9 +33,29 @@ impl Study {
 impl fmt::Display for Study {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let s = self.file();
-        writeln!(f, "Study: {} ({})", s.study.name, self.path().display())?;
-        writeln!(f, "  {}", s.study.description)?;
-        writeln!(f, "  source: {}", s.study.citation)?;
+        if let (Some(pods), Some(plan)) = (&s.pods, &s.plan) {
+            self.pod_summary(f, pods, plan)?;
+        }
+        if let Some(plan) = &s.plan {
+            if s.rig.is_some() {
+                self.pull_off_summary(f, plan)?;
+            }
+        }
+        if s.diagnosis.is_some() {
+            self.diagnosis_summary(f)?;
+        }
+        Ok(())
+    }
+}
+
+impl Study {
+    fn pod_summary(&self, f: &mut fmt::Formatter<'_>, p: &Pods, plan: &Plan) -> fmt::Result {
+        let s = self.file();
+        if let Some(h) = &s.study {
+            writeln!(f, "Study: {} ({})", h.name, self.path().display())?;
+            writeln!(f, "  {}", h.description)?;
+            writeln!(f, "  source: {}", h.citation)?;
+        }
         writeln!(f, "Materials:")?;
         for (name, m) in &s.materials {
             writeln!(
@@ -45,7 +67,6 @@ impl fmt::Display for Study {
                 significant(m.youngs_modulus_pa() / PA_PER_MPA)
             )?;
         }
-        let p = &s.pods;
         writeln!(
             f,
             "Pods ({}): {} × {} × {} mm; mix normal {}, cocoon {}, single-grain {}",
@@ -107,17 +128,16 @@ impl fmt::Display for Study {
                 v.label, v.spec.name, v.range.low, v.range.high, v.spec.unit
             )?;
         }
-        let plan = &s.plan;
         let k = s.parameters.len() as u32;
         writeln!(f, "Plan:")?;
         writeln!(
             f,
             "  screening {}: {k} factors + {} dummies, {} centre points, α = {}",
-            match plan.screening.design {
-                ScreeningDesign::Pb12 => "Plackett–Burman, 12 runs",
-                ScreeningDesign::Pb20 => "Plackett–Burman, 20 runs",
+            match plan.screening.design_runs() {
+                20 => "Plackett–Burman, 20 runs",
+                _ => "Plackett–Burman, 12 runs",
             },
-            plan.screening.design.columns().saturating_sub(k),
+            plan.screening.columns().saturating_sub(k),
             plan.screening.centre_points,
             plan.screening.significance
         )?;
@@ -126,45 +146,62 @@ impl fmt::Display for Study {
             "  steepest ascent: {} points, step {} coded from {}",
             plan.steepest_ascent.points,
             plan.steepest_ascent.step_coded,
-            plan.steepest_ascent.origin_coded
+            plan.steepest_ascent
+                .origin_coded
+                .unwrap_or(super::plan::DEFAULT_ORIGIN_CODED)
         )?;
-        writeln!(
-            f,
-            "  Box–Behnken: {} centre points; {} model",
-            plan.box_behnken.centre_points,
-            match plan.model.order {
-                ModelOrder::Linear => "linear",
-                ModelOrder::Interaction => "two-factor interaction",
-                ModelOrder::Quadratic => "quadratic",
-            }
-        )?;
-        let t = self.target();
-        writeln!(
-            f,
-            "  target: {} {} = {} {}",
-            t.experiment,
-            t.quantity,
-            t.mean().unwrap_or(f64::NAN),
-            t.unit
-        )?;
-        writeln!(
-            f,
-            "  validation: {} {}, relative error ≤ {} %",
-            plan.validation.experiment,
-            plan.validation.quantity,
-            plan.validation.max_relative_error_pct
-        )?;
+        let model = match plan.model.as_ref().map(|m| m.order) {
+            Some(ModelOrder::Linear) => "linear",
+            Some(ModelOrder::Interaction) => "two-factor interaction",
+            Some(ModelOrder::Quadratic) | None => "quadratic",
+        };
+        match (&plan.box_behnken, &plan.central_composite) {
+            (Some(b), _) => writeln!(
+                f,
+                "  Box–Behnken: {} centre points; {model} model",
+                b.centre_points
+            )?,
+            (None, Some(c)) => writeln!(
+                f,
+                "  central composite: α = {}, {} centre points; {model} model",
+                c.alpha, c.centre_points
+            )?,
+            (None, None) => {}
+        }
+        if let Some(t) = self.target() {
+            writeln!(
+                f,
+                "  target: {} {} = {} {}",
+                t.experiment,
+                t.quantity,
+                t.mean().unwrap_or(f64::NAN),
+                t.unit
+            )?;
+        }
+        if let Some(v) = self.validation() {
+            writeln!(
+                f,
+                "  validation: {} {}, relative error ≤ {} %",
+                v.experiment, v.quantity, plan.validation.max_relative_error_pct
+            )?;
+        }
         for (name, mode) in &plan.modes {
-            let mark = if *name == plan.mode { " (default)" } else { "" };
+            let mark = if Some(name) == plan.mode.as_ref() {
+                " (default)"
+            } else {
+                ""
+            };
             writeln!(
                 f,
                 "  mode {name}{mark}: {} pods, {} spheres per pod",
                 mode.pods, mode.spheres_per_pod
             )?;
         }
-        let sim = &plan.simulation;
+        let Some(sim) = &plan.simulation else {
+            return Ok(());
+        };
         let r = &sim.repose;
-        write!(
+        writeln!(
             f,
             "  simulation: dt = {} T_R, cells {}R, g {} m/s², seed {}; cylinder Ø{} × {} mm, \
              fill {} s at {} m/s, lift at {} s at {} m/s, settle {} s",
@@ -180,5 +217,93 @@ impl fmt::Display for Study {
             r.lift_speed_m_s,
             r.settle_after_lift_s
         )
+    }
+}
+
+impl Study {
+    fn pull_off_summary(&self, f: &mut fmt::Formatter<'_>, p: &Plan) -> fmt::Result {
+        let s = self.file();
+        let (Some(rig), Some(m)) = (&s.rig, &s.measurement) else {
+            return Ok(());
+        };
+        writeln!(
+            f,
+            "plant pull-off study {} ({})",
+            self.name(),
+            self.path().display()
+        )?;
+        writeln!(
+            f,
+            "measured {} = {} N ({})",
+            m.quantity, m.value_n, m.source
+        )?;
+        writeln!(
+            f,
+            "rig: {} m/s at {}°, {} stalk spheres, bond sets {} / {} of {}",
+            rig.pull_speed_m_s,
+            rig.pull_angle_deg,
+            rig.stalk_spheres,
+            rig.junction_bond_set,
+            rig.stalk_bond_set,
+            rig.topology
+        )?;
+        for factor in self.factors() {
+            if let Some(p) = crate::rigs::pull_off::by_name(&factor.name) {
+                writeln!(
+                    f,
+                    "  {} {} ({}): {} … {}",
+                    factor.label, p.description, factor.unit, factor.low, factor.high
+                )?;
+            }
+        }
+        let Some(c) = &p.central_composite else {
+            return Ok(());
+        };
+        writeln!(
+            f,
+            "plan: Plackett–Burman {} runs + {} centre points; steepest ascent step {} coded, \
+             {}–{} points; central composite on {} (α = {}, {} centre points); goal {}; \
+             validation within {} %",
+            p.screening.design_runs(),
+            p.screening.centre_points,
+            p.steepest_ascent.step_coded,
+            p.steepest_ascent.points,
+            p.steepest_ascent
+                .max_points
+                .unwrap_or(p.steepest_ascent.points),
+            c.factors
+                .as_ref()
+                .map_or("the screening's choice".to_owned(), |f| f.join(", ")),
+            c.alpha,
+            c.centre_points,
+            p.optimisation
+                .as_ref()
+                .map_or(super::plan::GOAL_TARGET, |o| o.goal.as_str()),
+            p.validation.max_relative_error_pct
+        )
+    }
+
+    fn diagnosis_summary(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let Some(d) = &self.file().diagnosis else {
+            return Ok(());
+        };
+        writeln!(f, "diagnosis study {} ({})", d.name, self.path().display())?;
+        let values: Vec<String> = d
+            .calibration
+            .values()
+            .iter()
+            .map(|(k, v)| format!("{k} = {v}"))
+            .collect();
+        writeln!(f, "calibration: {}", values.join(", "))?;
+        for e in &d.experiment {
+            let replicates: usize = e.point.iter().map(|p| p.values.len()).sum();
+            writeln!(
+                f,
+                "  {}: {} conditions, {replicates} replicates",
+                e.kind,
+                e.point.len()
+            )?;
+        }
+        Ok(())
     }
 }

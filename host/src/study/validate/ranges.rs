@@ -4,10 +4,10 @@ use std::collections::BTreeMap;
 
 use super::Validator;
 use crate::limits::Limits;
+use crate::nearest_name::nearest_name;
+use crate::rigs::pod_world::parameters::{self, lookup, Owner};
 use crate::study::file_format::StudyFile;
 use crate::study::key_path::KeyPath;
-use crate::study::nearest_name::nearest_name;
-use crate::study::parameters::{self, lookup, Owner};
 
 impl Validator<'_, '_> {
     pub(super) fn parameters(&mut self, file: &StudyFile) {

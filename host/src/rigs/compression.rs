@@ -12,13 +12,51 @@
 //! For a one-sphere filling E_app recovers the pod's E up to the steel's compliance.
 
 use arachis_core::prelude::*;
-use serde::Serialize;
 
-use super::error::ExperimentError;
-use super::frames::FrameRecorder;
-use super::setup::*;
-use super::{Observation, ObservationDetails, RunOptions};
-use crate::study::Experiment;
+use super::kind::{ConditionKey, Quantity, RigKind, WorldKind};
+use super::pod_bench::{PodTest, MOISTURE};
+use super::pod_world::error::ExperimentError;
+use super::pod_world::frames::FrameRecorder;
+use super::pod_world::observation::*;
+use super::pod_world::setup::*;
+use super::pod_world::Experiment;
+use crate::limits::Limits;
+
+/// This rig's test.
+pub const TEST: PodTest = PodTest {
+    experiment: Experiment::Compression,
+    run,
+};
+
+/// This rig in the catalogue.
+pub const KIND: RigKind = RigKind {
+    name: "compression",
+    about: "a pod compressed between two steel plates (apparent modulus, seed 000 §2.5.3)",
+    world: WorldKind::Pods,
+    random: true,
+    quantities: &[
+        Quantity {
+            name: "apparent_modulus",
+            unit: "Pa",
+            label: "apparent modulus, Pa",
+        },
+        Quantity {
+            name: "peak_force",
+            unit: "N",
+            label: "peak force, N",
+        },
+    ],
+    conditions: &[
+        ConditionKey::new(
+            "loading_speed_mm_min",
+            "loading speed, mm/min",
+            Limits::Positive,
+        ),
+        MOISTURE,
+    ],
+    parameters: &[],
+    build: |w, o| super::pod_bench::build(w, o, TEST),
+};
 
 const EXPERIMENT: Experiment = Experiment::Compression;
 
@@ -30,19 +68,6 @@ pub const COMPRESSION_MM: f64 = 0.5;
 pub const START_GAP_MM: f64 = 0.2;
 /// Settling time of the pod on the lower plate before the plate moves, s.
 pub const SETTLE_S: f64 = 0.2;
-
-/// Details of the compression run.
-#[derive(Debug, Clone, Serialize)]
-pub struct CompressionDetails {
-    /// Force on the upper plate at the final travel, N.
-    pub peak_force_n: f64,
-    /// Compression δ (plate travel after first contact), mm.
-    pub compression_mm: f64,
-    /// Radius R of the Hertz law, mm.
-    pub radius_mm: f64,
-    /// Time step, s.
-    pub dt_s: f64,
-}
 
 /// Runs the compression rig.
 pub fn run(

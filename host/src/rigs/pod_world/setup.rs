@@ -7,17 +7,20 @@
 //! passed with the core's explicit [`PoissonRange::ContactModel`] opt-in, only when the
 //! study's range says `poisson_above_half = true` (checked in [`super::values`]).
 
+use std::collections::BTreeMap;
+
 use arachis_core::body::MassProperties as CoreMass;
 use arachis_core::prelude::*;
 use arachis_core::scenario::SplitMix64;
 
 use super::error::ExperimentError;
+use super::run_spec::RunSpec;
+use super::settings::{Mode, Simulation};
 use super::templates::{PodTemplate, TemplateCache, TemplateKey, TemplateSet};
 use super::values::{check_values, ModeName, ParameterValues};
+use super::{Experiment, PodWorld};
 use crate::arena::OwnedStorage;
 use crate::shapes::{PodKind, ShapeMix};
-use crate::study::plan::{Mode, Simulation};
-use crate::study::{Experiment, RunSpec, Study};
 
 /// m per mm.
 pub const M_PER_MM: f64 = 1e-3;
@@ -96,30 +99,24 @@ fn pair(
 }
 
 impl RunInputs {
-    /// Resolves `values` (checked against the registry and limits) over `study` in `mode`.
+    /// Resolves `values` (checked against the registry and limits) over `world` at
+    /// `condition` in `mode`.
     pub fn resolve(
-        study: &Study,
+        world: &PodWorld<'_>,
         experiment: Experiment,
+        condition: &BTreeMap<String, f64>,
         values: &ParameterValues,
         mode: ModeName,
         cache: &TemplateCache,
     ) -> Result<Self, ExperimentError> {
-        check_values(study, values)?;
-        let file = study.file();
-        if !file.plan.modes.contains_key(mode.as_str()) {
+        check_values(world, values)?;
+        if !world.modes.contains_key(mode.as_str()) {
             return Err(ExperimentError::MissingMode {
                 mode: mode.as_str().to_owned(),
             });
         }
-        let condition = study
-            .file()
-            .measurements
-            .iter()
-            .find(|m| m.experiment == experiment)
-            .map(|m| m.condition.clone())
-            .unwrap_or_default();
-        let spec = study
-            .run_spec(experiment, &condition, values, mode.as_str())
+        let spec = world
+            .run_spec(experiment, condition, values, mode.as_str())
             .map_err(|reason| study_error(experiment, reason))?;
         let pod_name = spec.pods.material.clone();
         let wall_name = spec.simulation.wall_material.clone();
@@ -143,7 +140,7 @@ impl RunInputs {
             ]
             .map(f64::to_bits),
             spheres_per_pod: spec.mode.spheres_per_pod,
-            stl: study
+            stl: world
                 .stl_paths()
                 .into_iter()
                 .filter_map(|(k, p)| PodKind::from_key(k).map(|k| (k, p)))
@@ -153,7 +150,7 @@ impl RunInputs {
         Ok(RunInputs {
             mode: spec.mode.clone(),
             mode_name: mode,
-            full_pods: file.plan.modes.get("full").map(|m| m.pods),
+            full_pods: world.modes.get("full").map(|m| m.pods),
             simulation: spec.simulation.clone(),
             spec,
             pod,

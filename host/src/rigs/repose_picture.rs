@@ -13,7 +13,7 @@ use anyhow::{anyhow, bail, Context};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::repose::ReposeDetails;
+use super::pod_world::observation::ReposeDetails;
 use crate::io::write_atomic;
 
 /// Picture width, pixels.

@@ -1,5 +1,5 @@
 //! Parameter values for one run: registry keys (`pod-pod.static_friction`, `pod.poisson`, …,
-//! [`crate::study::REGISTRY`]) mapped to SI values that override the study's held values,
+//! [`super::REGISTRY`]) mapped to SI values that override the study's held values,
 //! the run mode, and their checks.
 
 use std::collections::BTreeMap;
@@ -7,8 +7,9 @@ use std::fmt;
 use std::str::FromStr;
 
 use super::error::ExperimentError;
-use crate::study::parameters::lookup;
-use crate::study::{nearest_name, Study, REGISTRY};
+use super::parameters::{lookup, REGISTRY};
+use super::PodWorld;
+use crate::nearest_name::nearest_name;
 
 /// Registry key → value in the unit the key states (SI). Keys not given take the study's
 /// held value ([`Study::held_value`]: the study's own value, else its range's centre).
@@ -93,13 +94,12 @@ fn check_key(key: &str) -> Result<(), ExperimentError> {
 
 /// Checks every key of `values` against the registry and every value against its physical
 /// limits — with the study's `poisson_above_half` opt-in honoured for `pod.poisson`
-/// ([`crate::study::ParameterRange::limits`]).
-pub fn check_values(study: &Study, values: &ParameterValues) -> Result<(), ExperimentError> {
+/// ([`super::ParameterRange::limits`]).
+pub fn check_values(world: &PodWorld<'_>, values: &ParameterValues) -> Result<(), ExperimentError> {
     for (key, &value) in values {
         check_key(key)?;
         let spec = lookup(key).expect("checked");
-        let limits = study
-            .file()
+        let limits = world
             .parameters
             .get(key)
             .map_or(spec.limits, |range| range.limits(spec));

@@ -33,16 +33,47 @@ use std::f64::consts::PI;
 
 use arachis_core::prelude::*;
 use arachis_core::scenario::SplitMix64;
-use serde::Serialize;
 
-use super::error::ExperimentError;
-use super::frames::FrameRecorder;
-use super::setup::*;
-use super::{Observation, ObservationDetails, RunOptions};
+use super::kind::{ConditionKey, Quantity, RigKind, WorldKind};
+use super::pod_bench::{PodTest, MOISTURE};
+use super::pod_world::error::ExperimentError;
+use super::pod_world::frames::FrameRecorder;
+use super::pod_world::observation::*;
+use super::pod_world::setup::*;
+use super::pod_world::Experiment;
+use crate::limits::Limits;
 use crate::repose::{
     simulated_repose, FitBand, PileProblem, ReposeError, SimulatedRepose, Sphere as PileSphere,
 };
-use crate::study::Experiment;
+
+/// This rig's test.
+pub const TEST: PodTest = PodTest {
+    experiment: Experiment::Repose,
+    run,
+};
+
+/// This rig in the catalogue.
+pub const KIND: RigKind = RigKind {
+    name: "repose",
+    about: "the stacking angle of a pile by cylinder lifting (seed 000 §2.7, §3.6.1)",
+    world: WorldKind::Pods,
+    random: true,
+    quantities: &[Quantity {
+        name: "repose_angle",
+        unit: "deg",
+        label: "repose angle, deg",
+    }],
+    conditions: &[
+        ConditionKey::new(
+            "lift_speed_m_s",
+            "cylinder lifting speed, m/s",
+            Limits::Positive,
+        ),
+        MOISTURE,
+    ],
+    parameters: &[],
+    build: |w, o| super::pod_bench::build(w, o, TEST),
+};
 
 const EXPERIMENT: Experiment = Experiment::Repose;
 
@@ -67,45 +98,6 @@ pub const MIN_FILL_S: f64 = 0.1;
 pub const PIXELS_PER_MIN_RADIUS: f64 = 4.0;
 /// Cylinder height above the top of the lattice, mm (an open top; nothing reaches it).
 pub const CYLINDER_HEADROOM_MM: f64 = 10.0;
-
-/// The repose run's details, for reports.
-#[derive(Debug, Clone, Serialize)]
-pub struct ReposeDetails {
-    /// Pods in the pile.
-    pub pods: u32,
-    /// Spheres in the pile.
-    pub spheres: u32,
-    /// Cylinder diameter used, mm (scaled for the mode, module notes).
-    pub cylinder_diameter_mm: f64,
-    /// Time step, s.
-    pub dt_s: f64,
-    /// When the fill had settled and the lift began, s.
-    pub lift_start_s: f64,
-    /// When the cylinder's lower edge cleared the pile, s.
-    pub lift_end_s: f64,
-    /// End of the run, s.
-    pub end_s: f64,
-    /// Steps run.
-    pub steps: u64,
-    /// Kinetic energy at the end, J.
-    pub final_kinetic_energy_j: f64,
-    /// Standard deviation of the per-view angles, degrees.
-    pub view_sd_deg: f64,
-    /// Pile height (mean over views), mm.
-    pub pile_height_mm: f64,
-    /// Pile base width (mean over views), mm.
-    pub pile_width_mm: f64,
-    /// Pixel size of the silhouettes, mm.
-    pub mm_per_px: f64,
-    /// Every usable view: azimuth and both flank angles.
-    pub measurement: SimulatedRepose,
-    /// Views whose flanks could not be fitted (azimuth, degrees, and why); they are left
-    /// out of the mean (module notes, step 4).
-    pub refused_views: Vec<(f64, String)>,
-    /// Final sphere centres and radii, mm (for pictures).
-    #[serde(skip)]
-    pub pile: Vec<PileSphere>,
-}
 
 /// Runs the repose rig (module notes).
 pub fn run(

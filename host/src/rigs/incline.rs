@@ -12,13 +12,47 @@
 //! "sticks for θ < atan μ").
 
 use arachis_core::prelude::*;
-use serde::Serialize;
 
-use super::error::ExperimentError;
-use super::frames::FrameRecorder;
-use super::setup::*;
-use super::{Observation, ObservationDetails, RunOptions};
-use crate::study::Experiment;
+use super::kind::{ConditionKey, Quantity, RigKind, WorldKind};
+use super::pod_bench::{PodTest, MOISTURE};
+use super::pod_world::error::ExperimentError;
+use super::pod_world::frames::FrameRecorder;
+use super::pod_world::observation::*;
+use super::pod_world::setup::*;
+use super::pod_world::Experiment;
+use crate::limits::Limits;
+
+/// This rig's test.
+pub const TEST: PodTest = PodTest {
+    experiment: Experiment::InclineSlide,
+    run,
+};
+
+/// This rig in the catalogue.
+pub const KIND: RigKind = RigKind {
+    name: "incline_slide",
+    about: "a pod sliding on a tilting steel plate (static friction, seed 000 §2.6.2)",
+    world: WorldKind::Pods,
+    random: true,
+    quantities: &[
+        Quantity {
+            name: "slide_angle",
+            unit: "deg",
+            label: "slide angle, deg",
+        },
+        Quantity {
+            name: "static_friction",
+            unit: "-",
+            label: "static friction, -",
+        },
+    ],
+    conditions: &[
+        ConditionKey::new("slope_deg", "slope, degrees", Limits::Positive),
+        MOISTURE,
+    ],
+    parameters: &[],
+    build: |w, o| super::pod_bench::build(w, o, TEST),
+};
 
 const EXPERIMENT: Experiment = Experiment::InclineSlide;
 
@@ -38,17 +72,6 @@ pub const MAX_TILT_DEG: f64 = 85.0;
 pub const TILT_UPDATE_S: f64 = 0.002;
 /// Gap between the pod's lowest point and the plate at placement, mm.
 pub const DROP_GAP_MM: f64 = 0.05;
-
-/// Details of the incline run.
-#[derive(Debug, Clone, Serialize)]
-pub struct InclineDetails {
-    /// tan of the slide angle: the apparent static friction coefficient.
-    pub static_friction: f64,
-    /// Time step, s.
-    pub dt_s: f64,
-    /// Pod shape used.
-    pub pod_kind: &'static str,
-}
 
 /// Runs the incline rig.
 pub fn run(

@@ -10,11 +10,11 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use super::file_format::ShapeMix;
-use super::measurements::Experiment;
+use super::experiment::Experiment;
 use super::parameters::{for_property, lookup, Owner};
-use super::plan::{Mode, Simulation};
-use super::Study;
+use super::sections::ShapeMix;
+use super::settings::{Mode, Simulation};
+use super::PodWorld;
 use crate::calibration::spec_hash::{canonical_json, fnv1a_64, SpecHash};
 
 /// Version of the [`RunSpec`] layout; bump it when the meaning of a field changes.
@@ -102,7 +102,7 @@ impl RunSpec {
     }
 }
 
-impl Study {
+impl PodWorld<'_> {
     /// The full specification of one run of `experiment` at `condition`, with the
     /// parameters in `values` (registry names → values) and every other parameter at its
     /// held value ([`Study::held_value`]), in mode `mode`.
@@ -113,9 +113,7 @@ impl Study {
         values: &BTreeMap<String, f64>,
         mode: &str,
     ) -> Result<RunSpec, String> {
-        let file = self.file();
-        let mode_settings = file
-            .plan
+        let mode_settings = self
             .modes
             .get(mode)
             .ok_or_else(|| format!("no mode '{mode}' in the study"))?
@@ -125,7 +123,7 @@ impl Study {
                 return Err(format!("unknown parameter '{name}'"));
             }
         }
-        let mut materials: BTreeMap<String, RunMaterial> = file
+        let mut materials: BTreeMap<String, RunMaterial> = self
             .materials
             .iter()
             .map(|(n, m)| {
@@ -138,7 +136,7 @@ impl Study {
             })
             .collect();
         let mut pairs = BTreeMap::new();
-        for name in file.pairs.keys() {
+        for name in self.pairs.keys() {
             let get = |property: &str| -> Result<f64, String> {
                 let spec =
                     for_property(name, property).filter(|s| matches!(s.owner, Owner::Pair(_)));
@@ -148,7 +146,7 @@ impl Study {
                         .copied()
                         .or_else(|| self.held_value(s))
                         .ok_or_else(|| format!("{}: no value", s.name)),
-                    None => file.pairs[name]
+                    None => self.pairs[name]
                         .property(property)
                         .ok_or_else(|| format!("pair {name}: no {property}")),
                 }
@@ -175,11 +173,11 @@ impl Study {
                 }
             }
         }
-        let mut simulation = file.plan.simulation.clone();
+        let mut simulation = self.simulation.clone();
         if let Some(speed) = condition.get("lift_speed_m_s") {
             simulation.repose.lift_speed_m_s = *speed;
         }
-        let pods = &file.pods;
+        let pods = self.pods;
         Ok(RunSpec {
             spec_format: SPEC_FORMAT_VERSION,
             experiment,
@@ -200,11 +198,11 @@ impl Study {
     }
 }
 
-impl Study {
+impl PodWorld<'_> {
     /// Each scanned shape's path and content hash (the files were checked at load; one
     /// that has since vanished is an error here).
     fn run_stl(&self) -> Result<BTreeMap<String, RunStl>, String> {
-        let written = self.file().pods.stl.entries();
+        let written = self.pods.stl.entries();
         self.stl_paths()
             .into_iter()
             .zip(written)
