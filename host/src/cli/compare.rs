@@ -60,13 +60,17 @@ pub fn report(data: &Dataset, pred: &[f64]) -> Result<String> {
     let r = data.standardised(pred);
     let lof = lack_of_fit(data, pred)?;
     for (ei, e) in data.experiments.iter().enumerate() {
+        let axis = if e.condition.1.is_empty() {
+            "(one condition)"
+        } else {
+            e.condition.1.as_str()
+        };
         writeln!(
             s,
-            "experiment {} {}: {} vs {}",
+            "experiment {} {}: {} vs {axis}",
             ei + 1,
             e.rig,
-            e.observable_label,
-            e.condition.1
+            e.observable_label
         )?;
         writeln!(
             s,
@@ -78,10 +82,14 @@ pub fn report(data: &Dataset, pred: &[f64]) -> Result<String> {
             .enumerate()
             .filter(|(_, o)| o.experiment == ei)
         {
+            let at = if o.x.is_nan() {
+                "-".to_owned()
+            } else {
+                format!("{:.6}", o.x)
+            };
             writeln!(
                 s,
-                "  {:<12.6} {:>3}   {:<14.6} {:<12.3e} {:<15.6} {:+8.2}{}",
-                o.x,
+                "  {at:<12} {:>3}   {:<14.6} {:<12.3e} {:<15.6} {:+8.2}{}",
                 o.values.len(),
                 o.mean,
                 o.se_mean,

@@ -17,6 +17,7 @@ pub const RIGS: &[&RigKind] = &[
     &super::pod_bench::ROLLING,
     &super::compression::KIND,
     &super::pull_off::KIND,
+    &super::harvest::KIND,
     &super::rebound::KIND,
     &super::press::KIND,
     &super::fall::KIND,

@@ -54,7 +54,7 @@ pub const KIND: RigKind = RigKind {
         ),
         MOISTURE,
     ],
-    parameters: &[],
+    parameters: &super::pod_bench::PARAMETERS,
     build: |w, o| super::pod_bench::build(w, o, TEST),
 };
 

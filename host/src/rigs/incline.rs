@@ -50,7 +50,7 @@ pub const KIND: RigKind = RigKind {
         ConditionKey::new("slope_deg", "slope, degrees", Limits::Positive),
         MOISTURE,
     ],
-    parameters: &[],
+    parameters: &super::pod_bench::PARAMETERS,
     build: |w, o| super::pod_bench::build(w, o, TEST),
 };
 

@@ -101,6 +101,28 @@ pub struct RigParameter {
     pub about: &'static str,
 }
 
+impl RigParameter {
+    /// A base parameter named and keyed `name`, in `unit`, described by `about`, with
+    /// finite-difference step `fd_step` and typical magnitude `scale` (both in `unit`).
+    pub const fn base(
+        name: &'static str,
+        unit: &'static str,
+        about: &'static str,
+        fd_step: f64,
+        scale: f64,
+    ) -> Self {
+        Self {
+            name,
+            key: name,
+            unit,
+            role: Role::Base,
+            fd_step,
+            scale,
+            about,
+        }
+    }
+}
+
 /// What a rig simulates, as a study describes it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum WorldKind {

@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-use super::kind::{ConditionKey, Quantity, RigKind, RigOptions, WorldKind, Worlds};
+use super::kind::{ConditionKey, Quantity, RigKind, RigOptions, RigParameter, WorldKind, Worlds};
 use super::pod_world::observation::ReposeDetails;
 use super::pod_world::parameters::Owner;
 use super::pod_world::setup::RunInputs;
@@ -94,6 +94,27 @@ pub const MOISTURE: ConditionKey = ConditionKey::new(
     Limits::NonNegative,
 );
 
+/// The registry parameter `i` as a base parameter of a diagnosis, with finite-difference
+/// step `fd_step` and typical magnitude `scale` (its unit).
+const fn base(i: usize, fd_step: f64, scale: f64) -> RigParameter {
+    let p = &REGISTRY[i];
+    RigParameter::base(p.name, p.unit, p.description, fd_step, scale)
+}
+
+/// The pod rigs' parameters for a diagnosis: the registry's (seed 000 Table 3's x1…x8),
+/// steps of a hundredth of a coefficient (0.1 MPa for the shear modulus), far above the
+/// fixed-point resolution and inside the screened ranges; no optional effects yet.
+pub const PARAMETERS: [RigParameter; 8] = [
+    base(0, 0.01, 0.4),
+    base(1, 1.0e5, 3.0e6),
+    base(2, 0.01, 0.3),
+    base(3, 0.01, 0.85),
+    base(4, 0.01, 0.3),
+    base(5, 0.01, 0.3),
+    base(6, 0.01, 0.6),
+    base(7, 0.01, 0.16),
+];
+
 /// Builds the pod bench rig of `test` over a study's pod world.
 pub fn build<'a>(
     worlds: &Worlds<'a>,
@@ -137,7 +158,7 @@ pub const PLATE_DROP: RigKind = RigKind {
         ConditionKey::new("plate_angle_deg", "plate angle, degrees", Limits::Positive),
         MOISTURE,
     ],
-    parameters: &[],
+    parameters: &PARAMETERS,
     build: |w, o| build(w, o, PLATE_DROP_TEST),
 };
 
@@ -166,7 +187,7 @@ pub const ROLLING: RigKind = RigKind {
         ConditionKey::new("release_height_mm", "release height, mm", Limits::Positive),
         MOISTURE,
     ],
-    parameters: &[],
+    parameters: &PARAMETERS,
     build: |w, o| build(w, o, ROLLING_TEST),
 };
 

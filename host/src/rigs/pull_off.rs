@@ -24,7 +24,7 @@ use arachis_core::scenario::pull_off::{PullOff, PullOffResult};
 use arachis_core::scenario::ScenarioError;
 use serde_json::json;
 
-use super::kind::{Quantity, RigKind, WorldKind};
+use super::kind::{Quantity, RigKind, RigParameter, WorldKind};
 use crate::arena::{OwnedBonds, OwnedStorage};
 use crate::calibration::{ParameterValues, Responses, Rig, RigError, RunRequest};
 use crate::limits::Limits;
@@ -55,7 +55,7 @@ pub const KIND: RigKind = RigKind {
         },
     ],
     conditions: &[],
-    parameters: &[],
+    parameters: &DIAGNOSIS_PARAMETERS,
     build: |worlds, _| {
         let base = worlds.pull_off.ok_or_else(|| {
             RigError("the pull-off rig needs the study's [rig] and its topology".into())
@@ -183,6 +183,28 @@ pub const PARAMETERS: [Parameter; 9] = [
         setting: Setting::JunctionBondRadius,
         limits: Limits::Positive,
     },
+];
+
+/// Parameter `i` as a base parameter of a diagnosis, with finite-difference step `fd_step`
+/// and typical magnitude `scale` (its unit).
+const fn base(i: usize, fd_step: f64, scale: f64) -> RigParameter {
+    let p = &PARAMETERS[i];
+    RigParameter::base(p.name, p.unit, p.description, fd_step, scale)
+}
+
+/// The parameters for a diagnosis: coefficients by a hundredth, the junction's stiffness
+/// and strength by 1e4 (N/m³, Pa) and its radius by 1 µm, each far above the fixed-point
+/// resolution and far inside seed 001 Table 5's ranges.
+pub const DIAGNOSIS_PARAMETERS: [RigParameter; 9] = [
+    base(0, 0.01, 0.7),
+    base(1, 0.01, 0.6),
+    base(2, 0.01, 0.25),
+    base(3, 0.01, 0.55),
+    base(4, 0.01, 0.43),
+    base(5, 0.01, 0.28),
+    base(6, 1.0e4, 5.0e5),
+    base(7, 1.0e4, 1.0e6),
+    base(8, 1.0e-6, 1.1e-3),
 ];
 
 /// Seed 001's significant screening factors (Table 7: p < 0.05), most significant first.

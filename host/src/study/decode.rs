@@ -24,11 +24,13 @@ use crate::nearest_name::nearest_name;
 /// Which sections `root` has, and so which kinds of study it is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Layout {
-    /// A pod world (`[materials]`, `[pods]`, `[pairs]`, `[parameters]` or
-    /// `[[measurements]]`), also when nothing else marks the file.
+    /// A pod world (`[materials]`, `[pods]`, `[pairs]` or `[parameters]`), also when
+    /// nothing else marks the file.
     pub pods: bool,
     /// The pull-off tensile test (`[rig]`, `[measurement]` or `[factors]`).
     pub pull_off: bool,
+    /// `[[measurements]]` (then a pull-off study needs no `[measurement]`).
+    pub measurements: bool,
     /// `[diagnosis]`.
     pub diagnosis: bool,
 }
@@ -38,11 +40,11 @@ impl Layout {
         let has = |keys: &[&str]| keys.iter().any(|k| root.get(*k).is_some());
         let pull_off = has(&["rig", "measurement", "factors"]);
         let diagnosis = has(&["diagnosis"]);
-        let pods = has(&["materials", "pods", "pairs", "parameters", "measurements"])
-            || !(pull_off || diagnosis);
+        let pods = has(&["materials", "pods", "pairs", "parameters"]) || !(pull_off || diagnosis);
         Self {
             pods,
             pull_off,
+            measurements: has(&["measurements"]),
             diagnosis,
         }
     }
@@ -50,7 +52,9 @@ impl Layout {
     /// Whether the file must have section `key`.
     fn requires(&self, key: &str) -> bool {
         (self.pods && POD_SECTIONS.contains(&key))
-            || (self.pull_off && PULL_OFF_SECTIONS.contains(&key))
+            || (self.pull_off
+                && PULL_OFF_SECTIONS.contains(&key)
+                && !(key == "measurement" && self.measurements))
     }
 }
 

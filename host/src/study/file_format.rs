@@ -97,8 +97,9 @@ pub const POD_SECTIONS: [&str; 7] = [
     "plan",
 ];
 
-/// The sections a pull-off study must have.
-pub const PULL_OFF_SECTIONS: [&str; 5] = ["study", "rig", "measurement", "factors", "plan"];
+/// The sections a pull-off study must have (`[measurement]` unless it has
+/// `[[measurements]]`; `[factors]` and `[plan]` to be calibrated).
+pub const PULL_OFF_SECTIONS: [&str; 3] = ["study", "rig", "measurement"];
 
 /// `[study]`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
