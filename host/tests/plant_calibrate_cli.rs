@@ -29,6 +29,16 @@ fn writes_the_report_and_prints_the_validation() {
             .unwrap();
     assert_eq!(json["format"], "arachis-plant-calibration-1");
     assert_eq!(json["optimum"]["validated_n"], line["validated_n"]);
+    // The alias writes what `calibrate` writes on the shipped study, as c5d1f03 did.
+    let golden = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../testdata/golden-c5d1f03/plant-study/plant-calibration.json"
+    );
+    assert!(
+        std::fs::read(out.join("plant-calibration.json")).unwrap()
+            == std::fs::read(golden).unwrap(),
+        "plant-calibrate wrote other bytes than calibrate on the shipped study"
+    );
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(md.contains("passed"), "{md}");
 }
