@@ -14,6 +14,7 @@ use serde_json::json;
 use super::kind::{Quantity, RigKind, RigParameter, WorldKind};
 use crate::calibration::{ParameterValues, Responses, Rig, RigError, RunRequest};
 use crate::harvest::{run_harvest, HarvestConfig, Machine};
+use crate::limits::Limits;
 use crate::plant::{generate, Topology, SHIPPED_TOPOLOGY};
 
 /// The rig's name in study files.
@@ -33,6 +34,7 @@ const JUNCTION_SET: &str = "pod_stalk";
 pub const DRUM_SPEED: RigParameter = RigParameter::base(
     "machine.drum_speed_rpm",
     "rpm",
+    Limits::Positive,
     "picking-drum speed",
     10.0,
     500.0,
@@ -41,6 +43,7 @@ pub const DRUM_SPEED: RigParameter = RigParameter::base(
 pub const FORWARD_SPEED: RigParameter = RigParameter::base(
     "machine.forward_speed_m_s",
     "m/s",
+    Limits::Positive,
     "clamp-conveyor speed of the plants",
     0.02,
     1.0,
@@ -49,6 +52,7 @@ pub const FORWARD_SPEED: RigParameter = RigParameter::base(
 pub const DRUM_LENGTH: RigParameter = RigParameter::base(
     "machine.drum_length_m",
     "m",
+    Limits::Positive,
     "length of the picking drum",
     0.002,
     0.12,
@@ -57,6 +61,7 @@ pub const DRUM_LENGTH: RigParameter = RigParameter::base(
 pub const JUNCTION_STRENGTH: RigParameter = RigParameter::base(
     "junction.strength_pa",
     "Pa",
+    Limits::Positive,
     "critical stress σc = τc of the pod–stalk junction",
     1.0e4,
     1.0e6,

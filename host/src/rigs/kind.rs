@@ -97,16 +97,20 @@ pub struct RigParameter {
     pub fd_step: f64,
     /// Typical magnitude, to scale a fit's parameter vector to order one.
     pub scale: f64,
+    /// Physical limits of its values.
+    pub limits: Limits,
     /// One-line description.
     pub about: &'static str,
 }
 
 impl RigParameter {
-    /// A base parameter named and keyed `name`, in `unit`, described by `about`, with
-    /// finite-difference step `fd_step` and typical magnitude `scale` (both in `unit`).
+    /// A base parameter named and keyed `name`, in `unit` within `limits`, described by
+    /// `about`, with finite-difference step `fd_step` and typical magnitude `scale` (both
+    /// in `unit`).
     pub const fn base(
         name: &'static str,
         unit: &'static str,
+        limits: Limits,
         about: &'static str,
         fd_step: f64,
         scale: f64,
@@ -118,6 +122,7 @@ impl RigParameter {
             role: Role::Base,
             fd_step,
             scale,
+            limits,
             about,
         }
     }

@@ -98,7 +98,7 @@ pub const MOISTURE: ConditionKey = ConditionKey::new(
 /// step `fd_step` and typical magnitude `scale` (its unit).
 const fn base(i: usize, fd_step: f64, scale: f64) -> RigParameter {
     let p = &REGISTRY[i];
-    RigParameter::base(p.name, p.unit, p.description, fd_step, scale)
+    RigParameter::base(p.name, p.unit, p.limits, p.description, fd_step, scale)
 }
 
 /// The pod rigs' parameters for a diagnosis: the registry's (seed 000 Table 3's x1…x8),

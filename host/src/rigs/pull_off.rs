@@ -189,7 +189,7 @@ pub const PARAMETERS: [Parameter; 9] = [
 /// and typical magnitude `scale` (its unit).
 const fn base(i: usize, fd_step: f64, scale: f64) -> RigParameter {
     let p = &PARAMETERS[i];
-    RigParameter::base(p.name, p.unit, p.description, fd_step, scale)
+    RigParameter::base(p.name, p.unit, p.limits, p.description, fd_step, scale)
 }
 
 /// The parameters for a diagnosis: coefficients by a hundredth, the junction's stiffness

@@ -29,6 +29,7 @@ use serde_json::json;
 use super::kind::{ConditionKey, Quantity, RigParameter, Role};
 use crate::arena::OwnedStorage;
 use crate::calibration::{ParameterValues, Responses, Rig, RigError, RunRequest};
+use crate::limits::Limits;
 
 /// Sphere radius, m.
 pub const SPHERE_RADIUS_M: f64 = 0.004;
@@ -88,6 +89,7 @@ pub const PARAMETERS: [RigParameter; 6] = [
         role: Role::Base,
         fd_step: 0.01,
         scale: 0.5,
+        limits: Limits::Restitution,
         about: "pod-steel coefficient of restitution (constant-e damping, seed 000 eq. 4)",
     },
     RigParameter {
@@ -97,6 +99,7 @@ pub const PARAMETERS: [RigParameter; 6] = [
         role: Role::Base,
         fd_step: 2.0e5,
         scale: 1.0e7,
+        limits: Limits::Positive,
         about: "pod Young's modulus (Hertz stiffness, seed 000 eq. 3)",
     },
     RigParameter {
@@ -106,6 +109,7 @@ pub const PARAMETERS: [RigParameter; 6] = [
         role: Role::Effect,
         fd_step: 2.0e-6,
         scale: 1.0e-5,
+        limits: Limits::NonNegative,
         about: "viscoelastic damping, restitution falls with impact speed (Brilliantov 1996)",
     },
     RigParameter {
@@ -115,6 +119,7 @@ pub const PARAMETERS: [RigParameter; 6] = [
         role: Role::Effect,
         fd_step: 2.0e3,
         scale: 1.0e4,
+        limits: Limits::NonNegative,
         about: "SJKR cohesion, attraction k x contact area (LIGGGHTS sjkr)",
     },
     RigParameter {
@@ -124,6 +129,7 @@ pub const PARAMETERS: [RigParameter; 6] = [
         role: Role::Effect,
         fd_step: 0.05,
         scale: 0.5,
+        limits: Limits::NonNegative,
         about: "air drag coefficient Cd, F = -0.5 rho Cd A |v| v",
     },
     RigParameter {
@@ -133,6 +139,7 @@ pub const PARAMETERS: [RigParameter; 6] = [
         role: Role::Effect,
         fd_step: 0.02,
         scale: 0.1,
+        limits: Limits::Fraction,
         about: "hysteretic (plastic) normal contact, plastic fraction of the peak overlap (Walton & Braun 1986)",
     },
 ];

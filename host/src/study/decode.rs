@@ -24,8 +24,8 @@ use crate::nearest_name::nearest_name;
 /// Which sections `root` has, and so which kinds of study it is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Layout {
-    /// A pod world (`[materials]`, `[pods]`, `[pairs]` or `[parameters]`), also when
-    /// nothing else marks the file.
+    /// A pod world (`[materials]`, `[pods]` or `[pairs]`), also when nothing else marks the
+    /// file (a study of other rigs says what it measures in `[[measurements]]`).
     pub pods: bool,
     /// The pull-off tensile test (`[rig]`, `[measurement]` or `[factors]`).
     pub pull_off: bool,
@@ -40,11 +40,13 @@ impl Layout {
         let has = |keys: &[&str]| keys.iter().any(|k| root.get(*k).is_some());
         let pull_off = has(&["rig", "measurement", "factors"]);
         let diagnosis = has(&["diagnosis"]);
-        let pods = has(&["materials", "pods", "pairs", "parameters"]) || !(pull_off || diagnosis);
+        let measurements = has(&["measurements"]);
+        let pods = has(&["materials", "pods", "pairs"])
+            || !(pull_off || diagnosis || measurements || has(&["parameters"]));
         Self {
             pods,
             pull_off,
-            measurements: has(&["measurements"]),
+            measurements,
             diagnosis,
         }
     }

@@ -5,6 +5,7 @@
 use super::plan::{
     ModelOrder as PlanOrder, PathExtension, DEFAULT_ORIGIN_CODED, DEFAULT_VALIDATION_REPLICATES,
 };
+use super::validate::ranges::measured_rig_parameters;
 use super::{Measurement, Study};
 use crate::calibration::settings::{
     Extension, NamedFactors, PathSettings, PlanSettings, ScreeningSettings, SurfaceDesign,
@@ -46,7 +47,8 @@ impl Study {
 
     /// The varied parameters as calibration factors: the pod world's, in registry order
     /// (seed 000 Table 3's x1…x8), each held at the study's value or its range's centre;
-    /// then the pull-off rig's, in seed 001 Table 5's order, held at their centres.
+    /// then the pull-off rig's, in seed 001 Table 5's order, held at their centres; then,
+    /// in a study without a pod world, the `[parameters]` of its measured rigs.
     pub fn factors(&self) -> Vec<Factor> {
         let pods = self.varied().into_iter().map(|v| Factor {
             name: v.spec.name.to_owned(),
@@ -71,7 +73,26 @@ impl Study {
                 admitted: p.limits,
             })
         });
-        pods.chain(pulls).collect()
+        // Without a pod world, `[parameters]` ranges name the measured rigs' parameters.
+        let rigs = if self.pod_world().is_some() {
+            Vec::new()
+        } else {
+            measured_rig_parameters(self.file())
+        };
+        let others = self.file().parameters.iter().filter_map(|(name, range)| {
+            let p = rigs.iter().find(|p| p.key == name)?;
+            Some(Factor {
+                name: name.clone(),
+                label: range.label.clone().unwrap_or_else(|| name.clone()),
+                unit: p.unit.to_owned(),
+                low: range.low,
+                high: range.high,
+                held: range.centre(),
+                physical: p.limits,
+                admitted: p.limits,
+            })
+        });
+        pods.chain(pulls).chain(others).collect()
     }
 
     /// The plan's settings (`None` without a plan). A path with `max_points` goes on as

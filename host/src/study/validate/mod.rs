@@ -23,7 +23,7 @@ use std::path::Path;
 
 mod measurements;
 pub mod plan;
-mod ranges;
+pub mod ranges;
 
 use crate::limits::Limits;
 use crate::nearest_name::nearest_name;
