@@ -139,3 +139,23 @@ fn a_parameter_no_measured_rig_has_is_rejected_with_the_nearest_name() {
     assert!(err.contains("did you mean 'restitution'"), "{err}");
     assert!(!out.exists(), "an output folder was made");
 }
+
+#[test]
+fn study_check_summarises_a_study_of_another_rig() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = dir.path().join("study.toml");
+    fs::write(&study, REBOUND_STUDY).unwrap();
+    let o = arachis(&["study", "check", study.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout);
+    for line in [
+        "Study: rebound-restitution",
+        "rebound rebound_ratio: 0.5216666666666666 - (n = 3, replicates) at drop_height_m = 0.2",
+        "restitution                  0.3 … 0.7 -",
+        "youngs_modulus_pa            5000000 … 12000000 Pa",
+        "central composite: α = 1.414, 3 centre points; quadratic model",
+        "validation: rebound rebound_ratio, relative error ≤ 2 %",
+    ] {
+        assert!(text.contains(line), "no '{line}' in\n{text}");
+    }
+}

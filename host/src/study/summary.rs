@@ -1,6 +1,6 @@
 //! A human-readable summary of a validated study: what is measured, what varies, and the
 //! plan, in the units a user reads (MPa for moduli, mm for sizes): a pod study's, a
-//! pull-off study's, a diagnosis study's.
+//! pull-off study's, a diagnosis study's, and a study of other rigs' measurements.
 
 use std::fmt;
 
@@ -44,18 +44,27 @@ impl fmt::Display for Study {
         if s.diagnosis.is_some() {
             self.diagnosis_summary(f)?;
         }
+        if s.pods.is_none() && s.rig.is_none() && s.diagnosis.is_none() {
+            self.rig_summary(f)?;
+        }
         Ok(())
     }
 }
 
 impl Study {
-    fn pod_summary(&self, f: &mut fmt::Formatter<'_>, p: &Pods, plan: &Plan) -> fmt::Result {
-        let s = self.file();
-        if let Some(h) = &s.study {
+    /// The `[study]` header: name, file, description and source.
+    fn header(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some(h) = &self.file().study {
             writeln!(f, "Study: {} ({})", h.name, self.path().display())?;
             writeln!(f, "  {}", h.description)?;
             writeln!(f, "  source: {}", h.citation)?;
         }
+        Ok(())
+    }
+
+    fn pod_summary(&self, f: &mut fmt::Formatter<'_>, p: &Pods, plan: &Plan) -> fmt::Result {
+        let s = self.file();
+        self.header(f)?;
         writeln!(f, "Materials:")?;
         for (name, m) in &s.materials {
             writeln!(
@@ -92,6 +101,47 @@ impl Study {
                 show(pair.rolling_friction)
             )?;
         }
+        self.measurements_list(f)?;
+        let pods = self.varied();
+        let varied: Vec<_> = pods
+            .iter()
+            .map(|v| {
+                (
+                    v.label.as_str(),
+                    v.spec.name,
+                    v.range.low,
+                    v.range.high,
+                    v.spec.unit,
+                )
+            })
+            .collect();
+        self.varied_list(f, &varied)?;
+        self.plan_lines(f, plan)
+    }
+
+    /// A study of rigs without a world section: what it measures, what varies, the plan.
+    fn rig_summary(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.header(f)?;
+        self.measurements_list(f)?;
+        let factors = self.factors();
+        let varied: Vec<_> = factors
+            .iter()
+            .map(|v| {
+                // A label that only repeats the name says nothing.
+                let label = if v.label == v.name { "" } else { &v.label };
+                (label, v.name.as_str(), v.low, v.high, v.unit.as_str())
+            })
+            .collect();
+        self.varied_list(f, &varied)?;
+        match &self.file().plan {
+            Some(plan) => self.plan_lines(f, plan),
+            None => Ok(()),
+        }
+    }
+
+    /// Every `[[measurements]]` entry: mean, replicates, SD and condition.
+    fn measurements_list(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let s = self.file();
         writeln!(f, "Measurements:")?;
         for m in &s.measurements {
             let cond: Vec<String> = m
@@ -120,14 +170,25 @@ impl Study {
                 }
             )?;
         }
+        Ok(())
+    }
+
+    /// The varied parameters: label, name, range and unit of each.
+    fn varied_list(
+        &self,
+        f: &mut fmt::Formatter<'_>,
+        varied: &[(&str, &str, f64, f64, &str)],
+    ) -> fmt::Result {
         writeln!(f, "Varied parameters:")?;
-        for v in self.varied() {
-            writeln!(
-                f,
-                "  {:<4} {:<28} {} … {} {}",
-                v.label, v.spec.name, v.range.low, v.range.high, v.spec.unit
-            )?;
+        for (label, name, low, high, unit) in varied {
+            writeln!(f, "  {label:<4} {name:<28} {low} … {high} {unit}")?;
         }
+        Ok(())
+    }
+
+    /// The plan: screening, path, box, target, validation, run modes and simulation.
+    fn plan_lines(&self, f: &mut fmt::Formatter<'_>, plan: &Plan) -> fmt::Result {
+        let s = self.file();
         let k = s.parameters.len() as u32;
         writeln!(f, "Plan:")?;
         writeln!(
