@@ -18,6 +18,7 @@ pub const RIGS: &[&RigKind] = &[
     &super::compression::KIND,
     &super::pull_off::KIND,
     &super::harvest::KIND,
+    &super::bench_bed::KIND,
     &super::rebound::KIND,
     &super::press::KIND,
     &super::fall::KIND,

@@ -10,12 +10,14 @@
 //! | `plate_drop`, `rolling` | [`pod_bench`] | measurable, not simulated yet |
 //! | `pull_off` | [`pull_off`] | detachment force of a pod off its stalk (seed 001 §2.3) |
 //! | `harvest` | [`harvest`] | loss rate through a picking drum (seed 001 §3.3) |
+//! | `bench_bed` | [`bench_bed`] | bed height of pod spheres poured into a cylinder (DESIGN §8) |
 //! | `rebound`, `press`, `fall`, `unload` | [`rebound`], [`press`], [`fall`], [`unload`] | one pod sphere: restitution, overlap, fall time |
 //!
 //! What rigs share lives beside them: the pod world ([`pod_world`], [`pod_bench`]), the
 //! single sphere ([`single_sphere`]); [`repose_surrogate`] is a test stand-in for the repose
 //! rig. [`conformance`] is the test every rig must pass.
 
+pub mod bench_bed;
 pub mod catalogue;
 pub mod compression;
 pub mod conformance;
