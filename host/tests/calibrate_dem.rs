@@ -4,7 +4,7 @@
 //!
 //! One quick-mode repose spec at the seed's optimum (seed 000 §3.6.2), on the test pile of
 //! `quick_pile_support` (150 pods × 3 spheres), one pile of about 13 CPU-s:
-//! - the adapter answers what `run_experiment` answers for the spec's values, mode and seed
+//! - the adapter answers what `run_pod_test` answers for the spec's values, mode and seed
 //!   (bit for bit);
 //! - a second adapter, with nothing in memory (as after a resumed run), draws the pile
 //!   picture by simulating the spec again, and its caption prints the same angle: the
@@ -14,11 +14,9 @@
 use std::collections::BTreeMap;
 
 use arachis::calibration::{Rig, RunRequest};
-use arachis::rigs::catalogue::run_experiment;
-use arachis::rigs::pod_bench::{parameter_values, PodBenchRig, PILE_PICTURE};
+use arachis::rigs::pod_bench::{parameter_values, run_pod_test, PodBenchRig, PILE_PICTURE};
 use arachis::rigs::pod_world::{ModeName, RunOptions};
 use arachis::rigs::repose_cylinder::TEST as REPOSE;
-use arachis::study::Experiment;
 
 mod quick_pile_support;
 use quick_pile_support::test_pile_study;
@@ -49,9 +47,9 @@ fn dem_adapter_answers_like_the_rig_and_redraws_the_same_pile() {
     let fresh = PodBenchRig::new(study.pod_world().unwrap(), REPOSE, ModeName::Quick);
     let (direct, path) = rayon::join(
         || {
-            run_experiment(
+            run_pod_test(
                 &study.pod_world().unwrap(),
-                Experiment::Repose,
+                REPOSE,
                 &condition,
                 &parameter_values(&spec),
                 ModeName::Quick,
@@ -62,7 +60,7 @@ fn dem_adapter_answers_like_the_rig_and_redraws_the_same_pile() {
         },
         || fresh.picture(&request, dir.path()).unwrap().unwrap(),
     );
-    eprintln!("adapter {answered} °, run_experiment {} °", direct.value);
+    eprintln!("adapter {answered} °, run_pod_test {} °", direct.value);
     assert_eq!(answered.to_bits(), direct.value.to_bits());
     assert_eq!(path, dir.path().join(PILE_PICTURE));
     let svg = std::fs::read_to_string(&path).unwrap();

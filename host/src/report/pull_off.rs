@@ -408,7 +408,7 @@ impl PlantCalibration {
                         unit: f.unit.clone(),
                         low: f.low,
                         high: f.high,
-                        setting: by_name(&f.name).map_or(Setting::JunctionStrength, |p| p.setting),
+                        setting: by_name(&f.name).map_or(Setting::JunctionStrength, |p| p.sets),
                     })
                     .collect(),
                 screening_runs: plan.screening.runs.runs(),

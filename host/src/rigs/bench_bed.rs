@@ -19,7 +19,9 @@ use arachis_core::scenario::measure::{bed_height_mm, com_height_mm};
 use arachis_core::units::ENERGY_J_TO_MJ;
 use serde_json::json;
 
-use super::kind::{ConditionKey, Quantity, RigKind, RigParameter, WorldKind};
+use super::kind::{
+    diagnosis_parameters, ConditionKey, Parameter, Quantity, RigKind, RigParameter, WorldKind,
+};
 use crate::arena::OwnedStorage;
 use crate::calibration::{ParameterValues, Responses, Rig, RigError, RunRequest};
 use crate::limits::Limits;
@@ -47,118 +49,113 @@ const RESTITUTION_STEP: f64 = 0.02;
 const FRICTION_STEP: f64 = 0.04;
 const ROLLING_STEP: f64 = 0.015;
 
-/// A pair coefficient: its registry key, the pair and the coefficient it sets.
-struct PairCoefficient {
-    key: &'static str,
-    pair: Pair,
-    coefficient: Coefficient,
+/// What a parameter of the bed sets: one coefficient of one pair.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PairCoefficient {
+    /// The pair.
+    pub pair: Pair,
+    /// The coefficient.
+    pub coefficient: Coefficient,
 }
 
-#[derive(Clone, Copy)]
-enum Pair {
+/// A contact pair of the bed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Pair {
+    /// Pod sphere on pod sphere.
     PodPod,
+    /// Pod sphere on the steel floor or cylinder.
     PodSteel,
 }
 
-#[derive(Clone, Copy)]
-enum Coefficient {
+/// A coefficient of a pair.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Coefficient {
+    /// Coefficient of restitution e.
     Restitution,
+    /// Static friction coefficient μs.
     StaticFriction,
+    /// Rolling friction coefficient μr.
     RollingFriction,
 }
 
-const COEFFICIENTS: [PairCoefficient; 6] = [
+/// The coefficient `coefficient` of `pair`, named `name`: dimensionless, its limits by its
+/// kind, its DESIGN §8 value as its typical magnitude.
+const fn coefficient(
+    name: &'static str,
+    label: &'static str,
+    description: &'static str,
+    pair: Pair,
+    coefficient: Coefficient,
+) -> Parameter<PairCoefficient> {
+    let design = match pair {
+        Pair::PodPod => POD_POD,
+        Pair::PodSteel => POD_STEEL,
+    };
+    let (limits, fd_step, scale) = match coefficient {
+        Coefficient::Restitution => (Limits::Restitution, RESTITUTION_STEP, design.restitution),
+        Coefficient::StaticFriction => (Limits::Friction, FRICTION_STEP, design.friction),
+        Coefficient::RollingFriction => (Limits::Friction, ROLLING_STEP, design.rolling_friction),
+    };
+    Parameter {
+        name,
+        label,
+        description,
+        unit: "-",
+        sets: PairCoefficient { pair, coefficient },
+        limits,
+        fd_step,
+        scale,
+    }
+}
+
+/// The rig's parameters: the pod–pod and pod–steel coefficients.
+pub const COEFFICIENTS: [Parameter<PairCoefficient>; 6] = [
     coefficient(
         "pod-pod.restitution",
+        "e pod–pod",
+        "pod–pod coefficient of restitution",
         Pair::PodPod,
         Coefficient::Restitution,
     ),
     coefficient(
         "pod-pod.static_friction",
+        "μs pod–pod",
+        "pod–pod static friction coefficient",
         Pair::PodPod,
         Coefficient::StaticFriction,
     ),
     coefficient(
         "pod-pod.rolling_friction",
+        "μr pod–pod",
+        "pod–pod rolling friction coefficient",
         Pair::PodPod,
         Coefficient::RollingFriction,
     ),
     coefficient(
         "pod-steel.restitution",
+        "e pod–steel",
+        "pod–steel coefficient of restitution",
         Pair::PodSteel,
         Coefficient::Restitution,
     ),
     coefficient(
         "pod-steel.static_friction",
+        "μs pod–steel",
+        "pod–steel static friction coefficient",
         Pair::PodSteel,
         Coefficient::StaticFriction,
     ),
     coefficient(
         "pod-steel.rolling_friction",
+        "μr pod–steel",
+        "pod–steel rolling friction coefficient",
         Pair::PodSteel,
         Coefficient::RollingFriction,
     ),
 ];
 
-const fn coefficient(key: &'static str, pair: Pair, coefficient: Coefficient) -> PairCoefficient {
-    PairCoefficient {
-        key,
-        pair,
-        coefficient,
-    }
-}
-
 /// The rig's parameters, for a diagnosis and for a study's `[parameters]`.
-pub const PARAMETERS: [RigParameter; 6] = [
-    RigParameter::base(
-        COEFFICIENTS[0].key,
-        "-",
-        Limits::Restitution,
-        "pod–pod coefficient of restitution",
-        RESTITUTION_STEP,
-        POD_POD.restitution,
-    ),
-    RigParameter::base(
-        COEFFICIENTS[1].key,
-        "-",
-        Limits::Friction,
-        "pod–pod static friction coefficient",
-        FRICTION_STEP,
-        POD_POD.friction,
-    ),
-    RigParameter::base(
-        COEFFICIENTS[2].key,
-        "-",
-        Limits::Friction,
-        "pod–pod rolling friction coefficient",
-        ROLLING_STEP,
-        POD_POD.rolling_friction,
-    ),
-    RigParameter::base(
-        COEFFICIENTS[3].key,
-        "-",
-        Limits::Restitution,
-        "pod–steel coefficient of restitution",
-        RESTITUTION_STEP,
-        POD_STEEL.restitution,
-    ),
-    RigParameter::base(
-        COEFFICIENTS[4].key,
-        "-",
-        Limits::Friction,
-        "pod–steel static friction coefficient",
-        FRICTION_STEP,
-        POD_STEEL.friction,
-    ),
-    RigParameter::base(
-        COEFFICIENTS[5].key,
-        "-",
-        Limits::Friction,
-        "pod–steel rolling friction coefficient",
-        ROLLING_STEP,
-        POD_STEEL.rolling_friction,
-    ),
-];
+pub const PARAMETERS: [RigParameter; 6] = diagnosis_parameters(&COEFFICIENTS);
 
 /// This rig in the catalogue.
 pub const KIND: RigKind = RigKind {
@@ -255,23 +252,21 @@ impl BenchBedRig {
 fn pairs(values: &ParameterValues) -> Result<(PairSpec, PairSpec), RigError> {
     let (mut pod_pod, mut pod_steel) = (POD_POD, POD_STEEL);
     for (key, &value) in values {
-        let Some(i) = COEFFICIENTS.iter().position(|c| c.key == key) else {
-            let known: Vec<&str> = COEFFICIENTS.iter().map(|c| c.key).collect();
+        let Some(c) = COEFFICIENTS.iter().find(|c| c.name == key) else {
+            let known: Vec<&str> = COEFFICIENTS.iter().map(|c| c.name).collect();
             return Err(RigError(format!(
                 "the {NAME} rig has no parameter '{key}' (it has {})",
                 known.join(", ")
             )));
         };
-        PARAMETERS[i]
-            .limits
+        c.limits
             .check(value)
             .map_err(|why| RigError(format!("{key}: {why}")))?;
-        let c = &COEFFICIENTS[i];
-        let pair = match c.pair {
+        let pair = match c.sets.pair {
             Pair::PodPod => &mut pod_pod,
             Pair::PodSteel => &mut pod_steel,
         };
-        match c.coefficient {
+        match c.sets.coefficient {
             Coefficient::Restitution => pair.restitution = value,
             Coefficient::StaticFriction => pair.friction = value,
             Coefficient::RollingFriction => pair.rolling_friction = value,

@@ -3,11 +3,8 @@
 //! rig is one file that declares its [`RigKind`] plus one line in [`RIGS`].
 
 use super::kind::RigKind;
-use super::pod_bench::{run_experiment_with, PodTest};
-use super::pod_world::{
-    Experiment, ExperimentError, ModeName, Observation, ParameterValues, PodWorld, RunOptions,
-};
-use crate::calibration::Condition;
+use super::pod_bench::PodTest;
+use super::pod_world::Experiment;
 
 /// Every rig, in the order studies and messages list them.
 pub const RIGS: &[&RigKind] = &[
@@ -44,26 +41,4 @@ pub fn pod_test(experiment: Experiment) -> PodTest {
         Experiment::PlateDrop => super::pod_bench::PLATE_DROP_TEST,
         Experiment::Rolling => super::pod_bench::ROLLING_TEST,
     }
-}
-
-/// Runs the pod bench test of `experiment` over `world` directly, for its whole
-/// [`Observation`] (the `simulate` command); see [`run_experiment_with`].
-pub fn run_experiment(
-    world: &PodWorld<'_>,
-    experiment: Experiment,
-    condition: &Condition,
-    values: &ParameterValues,
-    mode: ModeName,
-    seed: u64,
-    options: &RunOptions,
-) -> Result<Observation, ExperimentError> {
-    run_experiment_with(
-        world,
-        pod_test(experiment),
-        condition,
-        values,
-        mode,
-        seed,
-        options,
-    )
 }

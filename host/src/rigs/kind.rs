@@ -128,6 +128,57 @@ impl RigParameter {
     }
 }
 
+/// A parameter a study may give a rig: the name a study and the engine use, its report
+/// label, what it is, its unit and limits, what it sets in the rig (`S`, the rig's own: a
+/// property of the pod world, a setting of the pull-off rig), and how a diagnosis varies it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Parameter<S> {
+    /// The key of its value (`pod-pod.static_friction`, `junction.strength_pa`).
+    pub name: &'static str,
+    /// Short label for reports (a seed's factor label, x1…).
+    pub label: &'static str,
+    /// What it is, in words.
+    pub description: &'static str,
+    /// Unit of its values (`-` for dimensionless; SI unless the name says otherwise).
+    pub unit: &'static str,
+    /// What it sets in the rig.
+    pub sets: S,
+    /// Physical limits every value must respect.
+    pub limits: Limits,
+    /// Finite-difference step of a diagnosis, in `unit` ([`RigParameter::fd_step`]).
+    pub fd_step: f64,
+    /// Typical magnitude, in `unit` ([`RigParameter::scale`]).
+    pub scale: f64,
+}
+
+impl<S> Parameter<S> {
+    /// This parameter as a base parameter of a diagnosis.
+    pub const fn for_diagnosis(&self) -> RigParameter {
+        RigParameter::base(
+            self.name,
+            self.unit,
+            self.limits,
+            self.description,
+            self.fd_step,
+            self.scale,
+        )
+    }
+}
+
+/// The base parameters of a diagnosis of every parameter of `registry`, in its order.
+pub const fn diagnosis_parameters<S, const N: usize>(
+    registry: &[Parameter<S>; N],
+) -> [RigParameter; N] {
+    // Filled below; a const fn cannot build an array from a closure.
+    let mut out = [RigParameter::base("", "", Limits::Positive, "", 0.0, 0.0); N];
+    let mut i = 0;
+    while i < N {
+        out[i] = registry[i].for_diagnosis();
+        i += 1;
+    }
+    out
+}
+
 /// What a rig simulates, as a study describes it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum WorldKind {

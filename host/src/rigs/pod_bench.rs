@@ -2,7 +2,7 @@
 //! lifting ([`super::repose_cylinder`], seed 000 §2.7), sliding on a tilting plate
 //! ([`super::incline`], §2.6.2) and compression between two plates
 //! ([`super::compression`], §2.5.3), each over a [`PodWorld`] in one run mode.
-//! [`run_experiment`] runs one of them directly (the `simulate` command).
+//! [`run_pod_test`] runs one of them directly (the `simulate` command).
 //!
 //! A run's specification is the study's full [`RunSpec`] with the run's values applied and
 //! the placement seed advanced by the replicate, so every pile is named by what makes it.
@@ -14,7 +14,10 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-use super::kind::{ConditionKey, Quantity, RigKind, RigOptions, RigParameter, WorldKind, Worlds};
+use super::kind::{
+    diagnosis_parameters, ConditionKey, Quantity, RigKind, RigOptions, RigParameter, WorldKind,
+    Worlds,
+};
 use super::pod_world::observation::ReposeDetails;
 use super::pod_world::parameters::Owner;
 use super::pod_world::setup::RunInputs;
@@ -66,7 +69,7 @@ pub const ROLLING_TEST: PodTest = PodTest {
 /// on any thread. Errors: an unknown key or a value outside its limits
 /// ([`ExperimentError::UnknownParameter`], [`ExperimentError::BadValue`]) before anything
 /// is simulated; a core refusal or step failure with the simulated time.
-pub fn run_experiment_with(
+pub fn run_pod_test(
     world: &PodWorld<'_>,
     test: PodTest,
     condition: &Condition,
@@ -94,26 +97,9 @@ pub const MOISTURE: ConditionKey = ConditionKey::new(
     Limits::NonNegative,
 );
 
-/// The registry parameter `i` as a base parameter of a diagnosis, with finite-difference
-/// step `fd_step` and typical magnitude `scale` (its unit).
-const fn base(i: usize, fd_step: f64, scale: f64) -> RigParameter {
-    let p = &REGISTRY[i];
-    RigParameter::base(p.name, p.unit, p.limits, p.description, fd_step, scale)
-}
-
-/// The pod rigs' parameters for a diagnosis: the registry's (seed 000 Table 3's x1…x8),
-/// steps of a hundredth of a coefficient (0.1 MPa for the shear modulus), far above the
-/// fixed-point resolution and inside the screened ranges; no optional effects yet.
-pub const PARAMETERS: [RigParameter; 8] = [
-    base(0, 0.01, 0.4),
-    base(1, 1.0e5, 3.0e6),
-    base(2, 0.01, 0.3),
-    base(3, 0.01, 0.85),
-    base(4, 0.01, 0.3),
-    base(5, 0.01, 0.3),
-    base(6, 0.01, 0.6),
-    base(7, 0.01, 0.16),
-];
+/// The pod rigs' parameters for a diagnosis: the registry's (seed 000 Table 3's x1…x8);
+/// no optional effects yet.
+pub const PARAMETERS: [RigParameter; 8] = diagnosis_parameters(&REGISTRY);
 
 /// Builds the pod bench rig of `test` over a study's pod world.
 pub fn build<'a>(
@@ -237,7 +223,7 @@ impl<'a> PodBenchRig<'a> {
             vtk_dir: None,
             templates: Some(Arc::clone(&self.templates)),
         };
-        run_experiment_with(
+        run_pod_test(
             &self.world,
             self.test,
             &spec.condition,
@@ -257,14 +243,14 @@ pub fn parameter_values(spec: &RunSpec) -> BTreeMap<String, f64> {
     REGISTRY
         .iter()
         .filter_map(|p| {
-            let value = match p.owner {
-                Owner::Material(m) => spec.materials.get(m).and_then(|mat| match p.property {
+            let value = match p.sets.owner {
+                Owner::Material(m) => spec.materials.get(m).and_then(|mat| match p.sets.property {
                     "poisson" => Some(mat.poisson),
                     "shear_modulus_pa" => Some(mat.shear_modulus_pa),
                     "density_kg_m3" => Some(mat.density_kg_m3),
                     _ => None,
                 }),
-                Owner::Pair(pair) => spec.pairs.get(pair).and_then(|v| match p.property {
+                Owner::Pair(pair) => spec.pairs.get(pair).and_then(|v| match p.sets.property {
                     "restitution" => Some(v.restitution),
                     "static_friction" => Some(v.static_friction),
                     "rolling_friction" => Some(v.rolling_friction),

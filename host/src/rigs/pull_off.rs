@@ -24,7 +24,7 @@ use arachis_core::scenario::pull_off::{PullOff, PullOffResult};
 use arachis_core::scenario::ScenarioError;
 use serde_json::json;
 
-use super::kind::{Quantity, RigKind, RigParameter, WorldKind};
+use super::kind::{self, diagnosis_parameters, Quantity, RigKind, RigParameter, WorldKind};
 use crate::arena::{OwnedBonds, OwnedStorage};
 use crate::calibration::{ParameterValues, Responses, Rig, RigError, RunRequest};
 use crate::limits::Limits;
@@ -93,119 +93,106 @@ pub enum Setting {
 }
 
 /// One settable parameter of the rig.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Parameter {
-    /// The name a study and the engine use.
-    pub name: &'static str,
-    /// Seed 001 Table 5 label.
-    pub label: &'static str,
-    /// What seed 001 calls it.
-    pub description: &'static str,
-    /// Unit of its values (SI).
-    pub unit: &'static str,
-    /// What it sets in the rig.
-    pub setting: Setting,
-    /// Physical limits.
-    pub limits: Limits,
-}
+pub type Parameter = kind::Parameter<Setting>;
 
-/// Seed 001 Table 5's factors, in its order.
+/// Seed 001 Table 5's factors, in its order. A diagnosis varies the coefficients by a
+/// hundredth, the junction's stiffness and strength by 1e4 (N/m³, Pa) and its radius by
+/// 1 µm, each far above the fixed-point resolution and far inside Table 5's ranges.
 pub const PARAMETERS: [Parameter; 9] = [
     Parameter {
         name: "stalk.static_friction",
         label: "x1",
         description: "static friction, pod stalk–steel",
         unit: "-",
-        setting: Setting::StalkFriction,
+        sets: Setting::StalkFriction,
         limits: Limits::Friction,
+        fd_step: 0.01,
+        scale: 0.7,
     },
     Parameter {
         name: "stalk.rolling_friction",
         label: "x2",
         description: "rolling friction, pod stalk–steel",
         unit: "-",
-        setting: Setting::StalkRollingFriction,
+        sets: Setting::StalkRollingFriction,
         limits: Limits::Friction,
+        fd_step: 0.01,
+        scale: 0.6,
     },
     Parameter {
         name: "stalk.restitution",
         label: "x3",
         description: "restitution, pod stalk–steel",
         unit: "-",
-        setting: Setting::StalkRestitution,
+        sets: Setting::StalkRestitution,
         limits: Limits::Restitution,
+        fd_step: 0.01,
+        scale: 0.25,
     },
     Parameter {
         name: "pod.static_friction",
         label: "x4",
         description: "static friction, pod–steel",
         unit: "-",
-        setting: Setting::PodFriction,
+        sets: Setting::PodFriction,
         limits: Limits::Friction,
+        fd_step: 0.01,
+        scale: 0.55,
     },
     Parameter {
         name: "pod.rolling_friction",
         label: "x5",
         description: "rolling friction, pod–steel",
         unit: "-",
-        setting: Setting::PodRollingFriction,
+        sets: Setting::PodRollingFriction,
         limits: Limits::Friction,
+        fd_step: 0.01,
+        scale: 0.43,
     },
     Parameter {
         name: "pod.restitution",
         label: "x6",
         description: "restitution, pod–steel",
         unit: "-",
-        setting: Setting::PodRestitution,
+        sets: Setting::PodRestitution,
         limits: Limits::Restitution,
+        fd_step: 0.01,
+        scale: 0.28,
     },
     Parameter {
         name: "junction.tangential_stiffness_n_m3",
         label: "x7",
         description: "tangential stiffness per unit area, pod–pod stalk",
         unit: "N/m^3",
-        setting: Setting::JunctionTangentialStiffness,
+        sets: Setting::JunctionTangentialStiffness,
         limits: Limits::Positive,
+        fd_step: 1.0e4,
+        scale: 5.0e5,
     },
     Parameter {
         name: "junction.strength_pa",
         label: "x8",
         description: "critical stress (σc = τc), pod–pod stalk",
         unit: "Pa",
-        setting: Setting::JunctionStrength,
+        sets: Setting::JunctionStrength,
         limits: Limits::Positive,
+        fd_step: 1.0e4,
+        scale: 1.0e6,
     },
     Parameter {
         name: "junction.bond_radius_m",
         label: "x9",
         description: "bond radius, pod–pod stalk",
         unit: "m",
-        setting: Setting::JunctionBondRadius,
+        sets: Setting::JunctionBondRadius,
         limits: Limits::Positive,
+        fd_step: 1.0e-6,
+        scale: 1.1e-3,
     },
 ];
 
-/// Parameter `i` as a base parameter of a diagnosis, with finite-difference step `fd_step`
-/// and typical magnitude `scale` (its unit).
-const fn base(i: usize, fd_step: f64, scale: f64) -> RigParameter {
-    let p = &PARAMETERS[i];
-    RigParameter::base(p.name, p.unit, p.limits, p.description, fd_step, scale)
-}
-
-/// The parameters for a diagnosis: coefficients by a hundredth, the junction's stiffness
-/// and strength by 1e4 (N/m³, Pa) and its radius by 1 µm, each far above the fixed-point
-/// resolution and far inside seed 001 Table 5's ranges.
-pub const DIAGNOSIS_PARAMETERS: [RigParameter; 9] = [
-    base(0, 0.01, 0.7),
-    base(1, 0.01, 0.6),
-    base(2, 0.01, 0.25),
-    base(3, 0.01, 0.55),
-    base(4, 0.01, 0.43),
-    base(5, 0.01, 0.28),
-    base(6, 1.0e4, 5.0e5),
-    base(7, 1.0e4, 1.0e6),
-    base(8, 1.0e-6, 1.1e-3),
-];
+/// The parameters for a diagnosis.
+pub const DIAGNOSIS_PARAMETERS: [RigParameter; 9] = diagnosis_parameters(&PARAMETERS);
 
 /// Seed 001's significant screening factors (Table 7: p < 0.05), most significant first.
 pub const SEED_SIGNIFICANT: [&str; 4] = ["x8", "x7", "x2", "x4"];
@@ -225,7 +212,7 @@ pub fn by_name(name: &str) -> Option<&'static Parameter> {
 impl Parameter {
     /// The value this parameter has in `rig`.
     pub fn get(&self, rig: &PullOff) -> f64 {
-        match self.setting {
+        match self.sets {
             Setting::StalkFriction => rig.stalk_contact.friction,
             Setting::StalkRollingFriction => rig.stalk_contact.rolling_friction,
             Setting::StalkRestitution => rig.stalk_contact.restitution,
@@ -240,7 +227,7 @@ impl Parameter {
 
     /// Sets `value` (in [`Self::unit`]) in `rig`.
     pub fn apply(&self, rig: &mut PullOff, value: f64) {
-        match self.setting {
+        match self.sets {
             Setting::StalkFriction => rig.stalk_contact.friction = value,
             Setting::StalkRollingFriction => rig.stalk_contact.rolling_friction = value,
             Setting::StalkRestitution => rig.stalk_contact.restitution = value,

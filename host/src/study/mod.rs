@@ -55,11 +55,11 @@ pub use measurements::Measurement;
 
 use crate::calibration::{Condition, ParameterValues, Rig, RigError};
 use crate::plant::topology::BondSet;
-use crate::rigs::catalogue;
 use crate::rigs::kind::{RigOptions, Worlds};
 use crate::rigs::pod_world::{
     ExperimentError, ModeName, Observation, ParameterSpec as Spec, PodWorld, RunOptions,
 };
+use crate::rigs::{catalogue, pod_bench};
 use pull_off::ReadFile;
 use source::Source;
 
@@ -284,7 +284,7 @@ impl Study {
     }
 
     /// Runs the pod bench test `experiment` directly at [`Study::condition_of`] it, for its
-    /// whole observation (`arachis simulate`; [`crate::rigs::catalogue::run_experiment`]).
+    /// whole observation (`arachis simulate`; [`crate::rigs::pod_bench::run_pod_test`]).
     pub fn run_experiment(
         &self,
         experiment: Experiment,
@@ -299,9 +299,9 @@ impl Study {
                      [plan.simulation])"
                 .into(),
         })?;
-        catalogue::run_experiment(
+        pod_bench::run_pod_test(
             &world,
-            experiment,
+            catalogue::pod_test(experiment),
             &self.condition_of(experiment.name()),
             values,
             mode,

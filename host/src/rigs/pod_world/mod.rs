@@ -85,17 +85,20 @@ impl<'a> PodWorld<'a> {
 
     /// The value the world gives for `spec` in its material or pair, if any.
     pub fn base_value(&self, spec: &ParameterSpec) -> Option<f64> {
-        match spec.owner {
-            Owner::Material(m) => self.materials.get(m).and_then(|mat| match spec.property {
-                "poisson" => Some(mat.poisson),
-                "shear_modulus_pa" => Some(mat.shear_modulus_pa),
-                "density_kg_m3" => Some(mat.density_kg_m3),
-                _ => None,
-            }),
+        match spec.sets.owner {
+            Owner::Material(m) => self
+                .materials
+                .get(m)
+                .and_then(|mat| match spec.sets.property {
+                    "poisson" => Some(mat.poisson),
+                    "shear_modulus_pa" => Some(mat.shear_modulus_pa),
+                    "density_kg_m3" => Some(mat.density_kg_m3),
+                    _ => None,
+                }),
             Owner::Pair(p) => self
                 .pairs
                 .get(p)
-                .and_then(|pair| pair.property(spec.property)),
+                .and_then(|pair| pair.property(spec.sets.property)),
         }
     }
 

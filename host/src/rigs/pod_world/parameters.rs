@@ -21,6 +21,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::limits::Limits;
+use crate::rigs::kind::Parameter;
 
 /// What a parameter sets: a property of a material or of a contact pair.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -31,98 +32,125 @@ pub enum Owner {
     Pair(&'static str),
 }
 
-/// One calibratable parameter.
+/// What a pod-world parameter sets: `property` of the material or pair `owner`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct ParameterSpec {
-    /// Full name, `<owner>.<property>`: the key under `[parameters]`.
-    pub name: &'static str,
-    /// Short label for reports (seed 000 Table 3's factor label).
-    pub label: &'static str,
-    /// What it is, in words.
-    pub description: &'static str,
-    /// Unit of the values (`-` for dimensionless).
-    pub unit: &'static str,
+pub struct Property {
     /// The material or pair it belongs to.
     pub owner: Owner,
     /// The key of the property in the owner's table.
     pub property: &'static str,
-    /// Physical limits every value must respect.
-    pub limits: Limits,
 }
 
-/// Every calibratable parameter, in seed 000 Table 3 order (x1…x8).
-pub const REGISTRY: &[ParameterSpec] = &[
+/// One calibratable parameter of the pod world.
+pub type ParameterSpec = Parameter<Property>;
+
+/// Every calibratable parameter, in seed 000 Table 3 order (x1…x8). A diagnosis varies
+/// each by a hundredth of a coefficient (0.1 MPa for the shear modulus), far above the
+/// fixed-point resolution and inside the screened ranges.
+pub const REGISTRY: [ParameterSpec; 8] = [
     ParameterSpec {
         name: "pod.poisson",
         label: "x1",
         description: "Poisson's ratio of peanut pods",
         unit: "-",
-        owner: Owner::Material("pod"),
-        property: "poisson",
+        sets: Property {
+            owner: Owner::Material("pod"),
+            property: "poisson",
+        },
         limits: Limits::Poisson,
+        fd_step: 0.01,
+        scale: 0.4,
     },
     ParameterSpec {
         name: "pod.shear_modulus_pa",
         label: "x2",
         description: "shear modulus of peanut pods",
         unit: "Pa",
-        owner: Owner::Material("pod"),
-        property: "shear_modulus_pa",
+        sets: Property {
+            owner: Owner::Material("pod"),
+            property: "shear_modulus_pa",
+        },
         limits: Limits::Positive,
+        fd_step: 1.0e5,
+        scale: 3.0e6,
     },
     ParameterSpec {
         name: "pod-pod.restitution",
         label: "x3",
         description: "pod–pod coefficient of restitution",
         unit: "-",
-        owner: Owner::Pair("pod-pod"),
-        property: "restitution",
+        sets: Property {
+            owner: Owner::Pair("pod-pod"),
+            property: "restitution",
+        },
         limits: Limits::Restitution,
+        fd_step: 0.01,
+        scale: 0.3,
     },
     ParameterSpec {
         name: "pod-pod.static_friction",
         label: "x4",
         description: "pod–pod coefficient of static friction",
         unit: "-",
-        owner: Owner::Pair("pod-pod"),
-        property: "static_friction",
+        sets: Property {
+            owner: Owner::Pair("pod-pod"),
+            property: "static_friction",
+        },
         limits: Limits::Friction,
+        fd_step: 0.01,
+        scale: 0.85,
     },
     ParameterSpec {
         name: "pod-pod.rolling_friction",
         label: "x5",
         description: "pod–pod coefficient of rolling friction",
         unit: "-",
-        owner: Owner::Pair("pod-pod"),
-        property: "rolling_friction",
+        sets: Property {
+            owner: Owner::Pair("pod-pod"),
+            property: "rolling_friction",
+        },
         limits: Limits::Friction,
+        fd_step: 0.01,
+        scale: 0.3,
     },
     ParameterSpec {
         name: "pod-steel.restitution",
         label: "x6",
         description: "pod–65Mn steel coefficient of restitution",
         unit: "-",
-        owner: Owner::Pair("pod-steel"),
-        property: "restitution",
+        sets: Property {
+            owner: Owner::Pair("pod-steel"),
+            property: "restitution",
+        },
         limits: Limits::Restitution,
+        fd_step: 0.01,
+        scale: 0.3,
     },
     ParameterSpec {
         name: "pod-steel.static_friction",
         label: "x7",
         description: "pod–65Mn steel coefficient of static friction",
         unit: "-",
-        owner: Owner::Pair("pod-steel"),
-        property: "static_friction",
+        sets: Property {
+            owner: Owner::Pair("pod-steel"),
+            property: "static_friction",
+        },
         limits: Limits::Friction,
+        fd_step: 0.01,
+        scale: 0.6,
     },
     ParameterSpec {
         name: "pod-steel.rolling_friction",
         label: "x8",
         description: "pod–65Mn steel coefficient of rolling friction",
         unit: "-",
-        owner: Owner::Pair("pod-steel"),
-        property: "rolling_friction",
+        sets: Property {
+            owner: Owner::Pair("pod-steel"),
+            property: "rolling_friction",
+        },
         limits: Limits::Friction,
+        fd_step: 0.01,
+        scale: 0.16,
     },
 ];
 
@@ -134,8 +162,8 @@ pub fn lookup(name: &str) -> Option<&'static ParameterSpec> {
 /// The registry entry setting `property` of `owner` (a material or pair name).
 pub fn for_property(owner: &str, property: &str) -> Option<&'static ParameterSpec> {
     REGISTRY.iter().find(|p| {
-        p.property == property
-            && match p.owner {
+        p.sets.property == property
+            && match p.sets.owner {
                 Owner::Material(m) | Owner::Pair(m) => m == owner,
             }
     })

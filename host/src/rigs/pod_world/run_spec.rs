@@ -139,7 +139,7 @@ impl PodWorld<'_> {
         for name in self.pairs.keys() {
             let get = |property: &str| -> Result<f64, String> {
                 let spec =
-                    for_property(name, property).filter(|s| matches!(s.owner, Owner::Pair(_)));
+                    for_property(name, property).filter(|s| matches!(s.sets.owner, Owner::Pair(_)));
                 match spec {
                     Some(s) => values
                         .get(s.name)
@@ -162,11 +162,11 @@ impl PodWorld<'_> {
         }
         for (name, value) in values {
             let spec = lookup(name).expect("checked above");
-            if let Owner::Material(m) = spec.owner {
+            if let Owner::Material(m) = spec.sets.owner {
                 let mat = materials
                     .get_mut(m)
                     .ok_or_else(|| format!("{name}: the study has no material '{m}'"))?;
-                match spec.property {
+                match spec.sets.property {
                     "poisson" => mat.poisson = *value,
                     "shear_modulus_pa" => mat.shear_modulus_pa = *value,
                     other => return Err(format!("{name}: unsupported material property {other}")),

@@ -52,12 +52,12 @@ impl Validator<'_, '_> {
                 );
                 continue;
             };
-            let owner_present = match spec.owner {
+            let owner_present = match spec.sets.owner {
                 Owner::Material(m) => file.materials.contains_key(m),
                 Owner::Pair(p) => file.pairs.contains_key(p),
             };
             if !owner_present {
-                let table = match spec.owner {
+                let table = match spec.sets.owner {
                     Owner::Material(m) => format!("[materials.{m}]"),
                     Owner::Pair(p) => format!("[pairs.\"{p}\"]"),
                 };
@@ -65,7 +65,7 @@ impl Validator<'_, '_> {
                     &k,
                     format!(
                         "varies {} of {table}, which this study does not have",
-                        spec.property
+                        spec.sets.property
                     ),
                 );
             }
