@@ -4,7 +4,7 @@
 
 use arachis_core::prelude::*;
 
-use super::kind::{ConditionKey, Quantity, RigKind, WorldKind};
+use super::kind::{ConditionKey, Quantity, RigKind};
 use super::single_sphere::*;
 use crate::calibration::RigError;
 use crate::limits::Limits;
@@ -27,16 +27,7 @@ pub const TEST: SingleSphereTest = SingleSphereTest {
 };
 
 /// This rig in the catalogue.
-pub const KIND: RigKind = RigKind {
-    name: TEST.name,
-    about: TEST.about,
-    world: WorldKind::Fixed,
-    random: false,
-    quantities: &[TEST.quantity],
-    conditions: &[TEST.condition],
-    parameters: &PARAMETERS,
-    build: |_, _| Ok(Box::new(SingleSphereRig { test: &TEST })),
-};
+pub const KIND: RigKind = TEST.kind(|_, _| Ok(Box::new(SingleSphereRig { test: &TEST })));
 
 /// The time (ms) to fall `height_m` (m) from rest.
 fn simulate(height_m: f64, p: &ModelParams) -> Result<f64, RigError> {

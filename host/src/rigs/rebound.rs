@@ -5,7 +5,7 @@
 
 use arachis_core::prelude::*;
 
-use super::kind::{ConditionKey, Quantity, RigKind, WorldKind};
+use super::kind::{ConditionKey, Quantity, RigKind};
 use super::single_sphere::*;
 use crate::calibration::RigError;
 use crate::limits::Limits;
@@ -28,16 +28,7 @@ pub const TEST: SingleSphereTest = SingleSphereTest {
 };
 
 /// This rig in the catalogue.
-pub const KIND: RigKind = RigKind {
-    name: TEST.name,
-    about: TEST.about,
-    world: WorldKind::Fixed,
-    random: false,
-    quantities: &[TEST.quantity],
-    conditions: &[TEST.condition],
-    parameters: &PARAMETERS,
-    build: |_, _| Ok(Box::new(SingleSphereRig { test: &TEST })),
-};
+pub const KIND: RigKind = TEST.kind(|_, _| Ok(Box::new(SingleSphereRig { test: &TEST })));
 
 /// The rebound/impact speed ratio after a drop from `height_m` (m).
 fn simulate(height_m: f64, p: &ModelParams) -> Result<f64, RigError> {

@@ -26,7 +26,7 @@ use arachis_core::prelude::*;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
 
-use super::kind::{ConditionKey, Quantity, RigParameter, Role};
+use super::kind::{BuildRig, ConditionKey, Quantity, RigKind, RigParameter, Role, WorldKind};
 use crate::arena::OwnedStorage;
 use crate::calibration::{ParameterValues, Responses, Rig, RigError, RunRequest};
 use crate::limits::Limits;
@@ -334,6 +334,21 @@ pub struct SingleSphereTest {
 }
 
 impl SingleSphereTest {
+    /// The catalogue entry of this test's rig, which `build` builds (each rig file passes a
+    /// builder naming its own test: a builder is a plain function and cannot carry it).
+    pub const fn kind(&'static self, build: BuildRig) -> RigKind {
+        RigKind {
+            name: self.name,
+            about: self.about,
+            world: WorldKind::Fixed,
+            random: false,
+            quantities: std::slice::from_ref(&self.quantity),
+            conditions: std::slice::from_ref(&self.condition),
+            parameters: &PARAMETERS,
+            build,
+        }
+    }
+
     /// Simulates the quantity at `condition` with parameters `p`, after checking both.
     pub fn observe(&self, condition: f64, p: &ModelParams) -> Result<f64, RigError> {
         self.condition

@@ -7,7 +7,7 @@
 //! load–unload loop of a compression test (seed 001), the one cheap rig that sees
 //! hysteresis apart from restitution.
 
-use super::kind::{ConditionKey, Quantity, RigKind, WorldKind};
+use super::kind::{ConditionKey, Quantity, RigKind};
 use super::press::settle;
 use super::single_sphere::*;
 use crate::calibration::RigError;
@@ -31,16 +31,7 @@ pub const TEST: SingleSphereTest = SingleSphereTest {
 };
 
 /// This rig in the catalogue.
-pub const KIND: RigKind = RigKind {
-    name: TEST.name,
-    about: TEST.about,
-    world: WorldKind::Fixed,
-    random: false,
-    quantities: &[TEST.quantity],
-    conditions: &[TEST.condition],
-    parameters: &PARAMETERS,
-    build: |_, _| Ok(Box::new(SingleSphereRig { test: &TEST })),
-};
+pub const KIND: RigKind = TEST.kind(|_, _| Ok(Box::new(SingleSphereRig { test: &TEST })));
 
 /// The resting overlap (µm) after loading to `load_n` (N) and unloading to half.
 fn simulate(load_n: f64, p: &ModelParams) -> Result<f64, RigError> {
