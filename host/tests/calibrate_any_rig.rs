@@ -3,6 +3,8 @@
 //! responses, so this study runs the same five stages as the pod and plant studies.
 
 use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::Output;
 
 mod cli_support;
 use cli_support::arachis;
@@ -49,19 +51,26 @@ max_relative_error_pct = 2.0
 const MEASURED_MEAN: f64 = (0.52 + 0.53 + 0.515) / 3.0;
 const ALPHA: f64 = 1.414;
 
-#[test]
-fn a_rebound_study_calibrates_restitution_through_all_five_stages() {
-    let dir = tempfile::tempdir().unwrap();
-    let study = dir.path().join("study.toml");
-    fs::write(&study, REBOUND_STUDY).unwrap();
-    let out = dir.path().join("out");
+/// Writes `study` into `dir` and runs `arachis calibrate` on it into `dir/out`; the
+/// command's output and the output folder.
+fn calibrate(dir: &Path, study: &str) -> (Output, PathBuf) {
+    let path = dir.join("study.toml");
+    fs::write(&path, study).unwrap();
+    let out = dir.join("out");
     let o = arachis(&[
         "calibrate",
-        study.to_str().unwrap(),
+        path.to_str().unwrap(),
         "--quiet",
         "--out",
         out.to_str().unwrap(),
     ]);
+    (o, out)
+}
+
+#[test]
+fn a_rebound_study_calibrates_restitution_through_all_five_stages() {
+    let dir = tempfile::tempdir().unwrap();
+    let (o, out) = calibrate(dir.path(), REBOUND_STUDY);
     assert!(
         o.status.success(),
         "calibrate failed: {}",
@@ -119,20 +128,8 @@ fn a_rebound_study_calibrates_restitution_through_all_five_stages() {
 #[test]
 fn a_parameter_no_measured_rig_has_is_rejected_with_the_nearest_name() {
     let dir = tempfile::tempdir().unwrap();
-    let study = dir.path().join("study.toml");
-    fs::write(
-        &study,
-        REBOUND_STUDY.replace("[parameters.restitution]", "[parameters.restitutio]"),
-    )
-    .unwrap();
-    let out = dir.path().join("out");
-    let o = arachis(&[
-        "calibrate",
-        study.to_str().unwrap(),
-        "--quiet",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let misspelt = REBOUND_STUDY.replace("[parameters.restitution]", "[parameters.restitutio]");
+    let (o, out) = calibrate(dir.path(), &misspelt);
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("parameters.restitutio"), "{err}");
