@@ -278,7 +278,7 @@ fn cached_runs_of_another_simulator_or_damaged_files_are_simulated_again() {
     assert!(again.outcome.simulated >= first.outcome.stages.screening.runs.len());
     assert_eq!(again.json, first.json);
     // Damage one file: only that run is redone.
-    let victim = &again.json.screening.runs[3].spec_hash;
+    let victim = &again.json.screening.stage.runs[3].spec_hash;
     std::fs::write(dir.path().join(format!("runs/{victim}.json")), "{\"trunc").unwrap();
     let repaired = calibrate_into(&study, &surrogate(&study, 0.312), dir.path(), 2).unwrap();
     assert_eq!(repaired.outcome.simulated, 1);
@@ -301,15 +301,22 @@ fn nothing_significant_proceeds_with_the_largest_effects_and_says_so() {
     assert!(
         c.screening.significant.is_empty(),
         "{:?}",
-        c.screening.effects
+        c.screening.stage.effects
     );
     assert_eq!(c.screening.selected.len(), 3);
     assert!(c.screening.notes[0].contains("no factor reached p < 0.001"));
     // The three carried are the three largest |effect|.
-    let mut sizes: Vec<f64> = c.screening.effects.iter().map(|e| e.effect.abs()).collect();
+    let mut sizes: Vec<f64> = c
+        .screening
+        .stage
+        .effects
+        .iter()
+        .map(|e| e.effect.abs())
+        .collect();
     sizes.sort_by(|a, b| b.total_cmp(a));
     for e in c
         .screening
+        .stage
         .effects
         .iter()
         .filter(|e| c.screening.selected.contains(&e.label))
@@ -350,14 +357,15 @@ fn a_target_beyond_the_planned_path_is_reported_at_the_path_end() {
     let c = calibrate_into(&study, &fifteen_low(&study), &dir.path().join("out"), 2)
         .unwrap()
         .json;
-    assert_eq!(c.steepest_ascent.direction, "ascent");
-    assert_eq!(c.steepest_ascent.runs.len(), 5);
+    let sa = &c.steepest_ascent.stage;
+    assert_eq!(sa.direction.name(), "ascent");
+    assert_eq!(sa.runs.len(), 5);
     assert!(c.steepest_ascent.best_at_path_end);
-    assert_eq!(c.steepest_ascent.best, c.steepest_ascent.runs.len());
+    assert_eq!(sa.best, sa.runs.len());
     assert!(c.steepest_ascent.notes[0].contains("path's last"));
     // The box reaches one step past the path's end.
     assert_eq!(c.surface().path_points, [4, 6]);
-    assert!(!c.validation.passed);
+    assert!(!c.validation.stage.passed);
     let report = String::from_utf8(bytes(&dir.path().join("out"), "report.md")).unwrap();
     assert!(report.contains("path's last") && report.contains("FAILED"));
 }
@@ -369,7 +377,7 @@ fn the_path_goes_on_with_doubling_gaps_until_it_crosses_the_target() {
     let c = calibrate_into(&study, &fifteen_low(&study), dir.path(), 2)
         .unwrap()
         .json;
-    let sa = &c.steepest_ascent;
+    let sa = &c.steepest_ascent.stage;
     let responses: Vec<f64> = sa.runs.iter().map(|r| r.response).collect();
     // The planned five stay below 31.06°; the extension runs in pairs, gaps 2, 4, 8, …
     assert!(responses[..5].iter().all(|&y| y < 31.06), "{responses:?}");
@@ -382,7 +390,8 @@ fn the_path_goes_on_with_doubling_gaps_until_it_crosses_the_target() {
     let before_last_pair = &responses[..responses.len() - 2];
     assert!(before_last_pair.iter().all(|&y| y < 31.06));
     assert!(responses[responses.len() - 2..].iter().any(|&y| y >= 31.06));
-    assert!(sa
+    assert!(c
+        .steepest_ascent
         .notes
         .iter()
         .any(|n| n.contains("went on with doubling gaps")));
@@ -391,7 +400,7 @@ fn the_path_goes_on_with_doubling_gaps_until_it_crosses_the_target() {
     assert_eq!(numbers, (1..=sa.runs.len()).collect::<Vec<_>>());
     // The Box–Behnken box brackets the target and the optimum validates (surrogate scatter
     // 0.3°, ψ limit 2 %).
-    assert!(c.validation.passed, "{:?}", c.validation);
+    assert!(c.validation.stage.passed, "{:?}", c.validation);
 }
 
 #[test]
@@ -406,15 +415,16 @@ fn the_path_never_leaves_the_physical_limits() {
     let c = calibrate_into(&study, &high, &dir.path().join("out"), 2)
         .unwrap()
         .json;
-    let sa = &c.steepest_ascent;
-    assert_eq!(sa.direction, "descent");
+    let sa = &c.steepest_ascent.stage;
+    assert_eq!(sa.direction.name(), "descent");
     assert!(sa.runs.len() > 5);
     let mut at_a_bound = 0;
     for run in sa.runs.iter().chain(&c.surface().runs) {
-        for (name, &value) in &run.actual {
+        for (name, &value) in &run.values {
             let spec = arachis::study::parameters::lookup(name).unwrap();
             let range = c
                 .screening
+                .stage
                 .factors
                 .iter()
                 .find(|f| &f.name == name)

@@ -11,6 +11,7 @@ use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rayon::prelude::*;
+use serde::Serialize;
 
 use super::error::CalibrateError;
 use super::factor::Factor;
@@ -32,14 +33,16 @@ pub struct PlannedRun {
     pub replicate: u32,
 }
 
-/// One finished run.
-#[derive(Debug, Clone, PartialEq)]
+/// One finished run; serialised as `calibration.json` lists it (the factors' values as
+/// `actual`, without the rig's other responses).
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RunRecord {
     /// 1-based run number within the stage (standard order).
     pub run: usize,
     /// Coded settings.
     pub coded: Vec<f64>,
     /// The factors the run set (name → value).
+    #[serde(rename = "actual")]
     pub values: ParameterValues,
     /// Replicate index.
     pub replicate: u32,
@@ -48,6 +51,7 @@ pub struct RunRecord {
     /// The objective's quantity, in its unit.
     pub response: f64,
     /// Every response the rig returned.
+    #[serde(skip)]
     pub responses: Responses,
 }
 

@@ -11,11 +11,14 @@
 //! to 0.586, seed 000 Table 3), but a path that extrapolates beyond the range stays inside
 //! the parameter's own physical limits ([`Factor::physical`], e.g. ν < 0.5, μ ≥ 0).
 
+use serde::Serialize;
+
 use crate::doe::{DesignError, Factor as DoeFactor};
 use crate::limits::Limits;
 
-/// One factor (module notes). `low`, `high` and `held` are in `unit`.
-#[derive(Debug, Clone, PartialEq)]
+/// One factor (module notes). `low`, `high` and `held` are in `unit`. Serialised as a
+/// design's factor: name, label, unit and range.
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Factor {
     /// The parameter the rig reads (e.g. `pod-pod.static_friction`).
     pub name: String,
@@ -28,10 +31,13 @@ pub struct Factor {
     /// Level at coded +1.
     pub high: f64,
     /// The value while the factor is not varied (the study's value or the range centre).
+    #[serde(skip)]
     pub held: f64,
     /// Limits beyond the screened range.
+    #[serde(skip)]
     pub physical: Limits,
     /// Limits of any run value.
+    #[serde(skip)]
     pub admitted: Limits,
 }
 

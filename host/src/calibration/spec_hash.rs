@@ -18,6 +18,7 @@
 
 use std::fmt;
 
+use serde::{Serialize, Serializer};
 use serde_json::Value;
 
 /// FNV-1a 64-bit offset basis.
@@ -39,6 +40,13 @@ pub struct SpecHash(pub u64);
 impl fmt::Display for SpecHash {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{:016x}", self.0)
+    }
+}
+
+/// Serialised as its 16 hex digits, the name of its file in the run cache.
+impl Serialize for SpecHash {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_str(self)
     }
 }
 

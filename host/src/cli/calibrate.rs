@@ -221,9 +221,9 @@ pub fn calibrate_study(args: &Args, study: &Study) -> anyhow::Result<()> {
     }
     println!(
         "steepest {}: best point {} of {}",
-        c.steepest_ascent.direction,
-        c.steepest_ascent.best,
-        c.steepest_ascent.runs.len()
+        c.steepest_ascent.stage.direction.name(),
+        c.steepest_ascent.stage.best,
+        c.steepest_ascent.stage.runs.len()
     );
     let params: Vec<String> = c
         .optimum
@@ -235,14 +235,15 @@ pub fn calibrate_study(args: &Args, study: &Study) -> anyhow::Result<()> {
     println!(
         "optimum: {} (D = {:.4}, predicted {:.3} {})",
         params.join(", "),
-        c.optimum.desirability,
-        c.optimum.predicted,
+        c.optimum.stage.desirability,
+        c.optimum.stage.predicted,
         c.target.unit
     );
-    let v = &c.validation;
+    let (v, unit) = (&c.validation.stage, &c.validation.unit);
     println!(
-        "validation: simulated {:.3} {} vs measured {} {}: relative error {:.3} % (limit {} %)",
-        v.simulated, v.unit, v.measured, v.unit, v.relative_error_pct, v.max_relative_error_pct
+        "validation: simulated {:.3} {unit} vs measured {} {unit}: relative error {:.3} % (limit \
+         {} %)",
+        v.simulated, v.measured, v.relative_error_pct, v.max_relative_error_pct
     );
     println!(
         "{} runs simulated, {} replayed from {}, in {:.1} s",

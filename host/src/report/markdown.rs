@@ -3,8 +3,9 @@
 
 use std::fmt::Write as _;
 
-use super::calibration_json::{CalibrationJson, RunJson};
+use super::calibration_json::CalibrationJson;
 use super::{FIGURES_DIR, PILE_SCHEMATIC};
+use crate::calibration::RunRecord;
 use crate::stats::report::{format_number, format_p, text_report};
 
 /// What the figures folder holds, for the report's links.
@@ -34,7 +35,7 @@ pub fn markdown(c: &CalibrationJson, strongest: Option<(&str, &str)>, figures: &
         "- Target: {} {} = {} {unit} (measured mean)",
         c.target.experiment, c.target.quantity, c.target.value
     );
-    let v = &c.validation;
+    let v = &c.validation.stage;
     let _ = writeln!(
         s,
         "- Result: simulated {} {unit} at the optimum, relative error ψ = {:.3} % (limit {} %): **{}**\n",
@@ -44,7 +45,7 @@ pub fn markdown(c: &CalibrationJson, strongest: Option<(&str, &str)>, figures: &
         if v.passed { "passed" } else { "FAILED" }
     );
 
-    let sc = &c.screening;
+    let sc = &c.screening.stage;
     let _ = writeln!(s, "## 1. Screening ({}, seed 000 §3.3)\n", sc.design);
     let _ = writeln!(
         s,
@@ -82,14 +83,14 @@ pub fn markdown(c: &CalibrationJson, strongest: Option<(&str, &str)>, figures: &
     let _ = writeln!(
         s,
         "\nMost significant factor: **{strongest}**. Significant: {}. Carried on: {}.\n",
-        if sc.significant.is_empty() {
+        if c.screening.significant.is_empty() {
             "none".to_owned()
         } else {
-            sc.significant.join(", ")
+            c.screening.significant.join(", ")
         },
-        sc.selected.join(", ")
+        c.screening.selected.join(", ")
     );
-    for note in &sc.notes {
+    for note in &c.screening.notes {
         let _ = writeln!(s, "> Note: {note}\n");
     }
     if let Some(why) = &sc.anova_unavailable {
@@ -104,11 +105,11 @@ pub fn markdown(c: &CalibrationJson, strongest: Option<(&str, &str)>, figures: &
     }
     runs_table(&mut s, "Screening runs", &sc.runs, unit);
 
-    let p = &c.steepest_ascent;
+    let p = &c.steepest_ascent.stage;
     let _ = writeln!(
         s,
         "## 2. Path of steepest {} (seed 000 §3.4)\n",
-        p.direction
+        p.direction.name()
     );
     let _ =
         writeln!(
@@ -133,12 +134,12 @@ pub fn markdown(c: &CalibrationJson, strongest: Option<(&str, &str)>, figures: &
             if r.run == p.best { " (best)" } else { "" }
         );
         for f in &p.factors {
-            let _ = write!(s, " {} |", fmt_value(r.actual[&f.name]));
+            let _ = write!(s, " {} |", fmt_value(r.values[&f.name]));
         }
         let _ = writeln!(s, " {} | {:.2} |", format_number(r.response), e);
     }
     let _ = writeln!(s);
-    for note in &p.notes {
+    for note in &c.steepest_ascent.notes {
         let _ = writeln!(s, "> Note: {note}\n");
     }
 
@@ -174,7 +175,7 @@ pub fn markdown(c: &CalibrationJson, strongest: Option<(&str, &str)>, figures: &
     }
     runs_table(&mut s, &format!("{design} runs"), &b.runs, unit);
 
-    let o = &c.optimum;
+    let o = &c.optimum.stage;
     let _ = writeln!(s, "## 4. Optimum (desirability, seed 000 §3.6.1)\n");
     let _ = writeln!(
         s,
@@ -193,7 +194,7 @@ pub fn markdown(c: &CalibrationJson, strongest: Option<(&str, &str)>, figures: &
         "| factor | parameter | unit | value | role | study range |"
     );
     let _ = writeln!(s, "|---|---|---|---|---|---|");
-    for r in &o.parameters {
+    for r in &c.optimum.parameters {
         let _ = writeln!(
             s,
             "| {} | {} | {} | {} | {} | {} – {} |",
@@ -248,9 +249,9 @@ fn fmt_value(v: f64) -> String {
     }
 }
 
-fn runs_table(s: &mut String, title: &str, runs: &[RunJson], unit: &str) {
+fn runs_table(s: &mut String, title: &str, runs: &[RunRecord], unit: &str) {
     let Some(first) = runs.first() else { return };
-    let names: Vec<&String> = first.actual.keys().collect();
+    let names: Vec<&String> = first.values.keys().collect();
     let _ = writeln!(s, "<details><summary>{title}</summary>\n");
     let _ = write!(s, "| run |");
     for n in &names {
@@ -261,7 +262,7 @@ fn runs_table(s: &mut String, title: &str, runs: &[RunJson], unit: &str) {
     for r in runs {
         let _ = write!(s, "| {} |", r.run);
         for n in &names {
-            let _ = write!(s, " {} |", fmt_value(r.actual[*n]));
+            let _ = write!(s, " {} |", fmt_value(r.values[*n]));
         }
         let _ = writeln!(
             s,

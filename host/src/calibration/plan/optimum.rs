@@ -11,6 +11,8 @@
 //! within [`DESIRABILITY_TIE`] of the best, the one nearest the box centre is taken, where
 //! the fitted surface is best supported (smallest prediction variance).
 
+use serde::Serialize;
+
 use super::super::executor::Executor;
 use super::super::rig::ParameterValues;
 use super::super::{CalibrateError, Objective};
@@ -27,7 +29,7 @@ pub const DESIRABILITY_TIE: f64 = 1e-6;
 const MIN_HALF_WIDTH_FRACTION: f64 = 1e-6;
 
 /// The desirability goal, in the response's unit.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct GoalRange {
     /// Target T.
     pub target: f64,
@@ -38,13 +40,14 @@ pub struct GoalRange {
 }
 
 /// The optimum's numbers.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Optimum {
     /// The goal.
     pub goal: GoalRange,
     /// Coded point in the response surface's coding, one per factor.
     pub coded: Vec<f64>,
     /// The calibrated factors' values (name → value in the factor's unit).
+    #[serde(rename = "actual")]
     pub values: ParameterValues,
     /// Overall desirability D.
     pub desirability: f64,

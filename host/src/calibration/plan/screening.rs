@@ -16,6 +16,7 @@
 //! is kept for the report.
 
 use nalgebra::DVector;
+use serde::Serialize;
 
 use super::super::executor::{replicate_indices, Executor, PlannedRun, RunRecord};
 use super::super::settings::ScreeningSettings;
@@ -27,7 +28,7 @@ use crate::stats::{self, analyze, Anova, CodedDesign, ModelOrder};
 pub const STAGE: &str = "screening";
 
 /// One factor's screening effect.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Effect {
     /// Report label.
     pub label: String,
@@ -80,8 +81,8 @@ pub struct Choice {
     pub named_reason: Option<String>,
 }
 
-/// The screening stage's numbers.
-#[derive(Debug, Clone, PartialEq)]
+/// The screening stage's numbers (serialised without the choice, which a report words).
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Screening {
     /// Design name.
     pub design: String,
@@ -102,6 +103,7 @@ pub struct Screening {
     /// Effects, in factor order.
     pub effects: Vec<Effect>,
     /// The factors that go on.
+    #[serde(skip)]
     pub choice: Choice,
 }
 

@@ -23,6 +23,8 @@
 //! - single steps: one point at a time while the point nearest the target is the last, and
 //!   no further once the next point would leave a physical limit.
 
+use serde::Serialize;
+
 use super::super::executor::{Executor, PlannedRun, RunRecord};
 use super::super::settings::{Extension, PathSettings};
 use super::super::{CalibrateError, Factor, Objective};
@@ -40,8 +42,9 @@ const FIRST_EXTENSION_GAP: f64 = 2.0;
 /// Stage name in messages and the progress bar.
 pub const STAGE: &str = "steepest ascent";
 
-/// Which way the path goes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Which way the path goes (serialised as its [`Direction::name`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Direction {
     /// Up the screening gradient (the target lies above the lowest prediction).
     Ascent,
@@ -59,8 +62,8 @@ impl Direction {
     }
 }
 
-/// The path stage's numbers.
-#[derive(Debug, Clone, PartialEq)]
+/// The path stage's numbers (serialised without how it ended, which a report words).
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SteepestAscent {
     /// The carried factors (screening coding), in carried order.
     pub factors: Vec<Factor>,
@@ -84,12 +87,16 @@ pub struct SteepestAscent {
     /// 1-based number of the point nearest the target.
     pub best: usize,
     /// The planned points.
+    #[serde(skip)]
     pub planned: usize,
     /// The extension that ran.
+    #[serde(skip)]
     pub extension: Extension,
     /// A doubling extension ended because every factor was held by a limit.
+    #[serde(skip)]
     pub held_at_limits: bool,
     /// A single-step extension ended because the next point would leave a limit (why).
+    #[serde(skip)]
     pub stopped_at_limit: Option<String>,
 }
 

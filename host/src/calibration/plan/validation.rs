@@ -8,6 +8,8 @@
 //! ψ = 0.42 %), which selects on run-to-run scatter; averaging replicates of one point
 //! measures the calibrated parameters, not the luck of a run. A deterministic rig needs one.
 
+use serde::Serialize;
+
 use super::super::executor::{Executor, PlannedRun, RunRecord};
 use super::super::settings::ValidationSettings;
 use super::super::{CalibrateError, Factor, Objective};
@@ -18,7 +20,7 @@ use crate::stats::relative_error_percent;
 pub const STAGE: &str = "validation";
 
 /// The validation's numbers.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Validation {
     /// The measured mean ζ.
     pub measured: f64,
