@@ -27,11 +27,6 @@ impl Progress {
         Self { visible: false }
     }
 
-    /// Whether bars are drawn.
-    pub fn is_visible(&self) -> bool {
-        self.visible
-    }
-
     /// A bar for `stage` with `total` runs of which `done` were found in the cache.
     pub fn stage(&self, stage: &str, total: usize, done: usize) -> ProgressBar {
         let bar = ProgressBar::with_draw_target(
