@@ -1,12 +1,12 @@
 //! The model's parameters as the diagnosis loop sees them: the **base** parameters a study's
 //! calibration sets (and a fit may move), and the optional **effects**, each off at 0 —
-//! both as the study's rigs declare them ([`crate::rigs::kind::RigParameter`], with their
+//! both as the study's rigs declare them ([`crate::rigs::parameter::RigParameter`], with their
 //! units and finite-difference steps). Values live in a [`ParameterValues`] map by key.
 
 use anyhow::{bail, Result};
 
 use crate::calibration::ParameterValues;
-pub use crate::rigs::kind::{RigParameter as ParamInfo, Role};
+pub use crate::rigs::parameter::{RigParameter as ParamInfo, Role};
 
 /// The value of `info` in `p` (0 when absent: an effect that is off).
 pub fn value(info: &ParamInfo, p: &ParameterValues) -> f64 {

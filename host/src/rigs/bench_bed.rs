@@ -19,9 +19,8 @@ use arachis_core::scenario::measure::{bed_height_mm, com_height_mm};
 use arachis_core::units::ENERGY_J_TO_MJ;
 use serde_json::json;
 
-use super::kind::{
-    diagnosis_parameters, ConditionKey, Parameter, Quantity, RigKind, RigParameter, WorldKind,
-};
+use super::kind::{ConditionKey, Quantity, RigKind, WorldKind};
+use super::parameter::{diagnosis_parameters, Parameter, RigParameter};
 use crate::arena::OwnedStorage;
 use crate::calibration::{ParameterValues, Responses, Rig, RigError, RunRequest};
 use crate::limits::Limits;

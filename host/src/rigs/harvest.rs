@@ -11,7 +11,8 @@
 use arachis_core::prelude::Fx;
 use serde_json::json;
 
-use super::kind::{Quantity, RigKind, RigParameter, WorldKind};
+use super::kind::{Quantity, RigKind, WorldKind};
+use super::parameter::RigParameter;
 use crate::calibration::{ParameterValues, Responses, Rig, RigError, RunRequest};
 use crate::harvest::{run_harvest, HarvestConfig, Machine};
 use crate::limits::Limits;

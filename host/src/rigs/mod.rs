@@ -15,7 +15,8 @@
 //!
 //! What rigs share lives beside them: the pod world ([`pod_world`], [`pod_bench`]), the
 //! single sphere ([`single_sphere`]); [`repose_surrogate`] is a test stand-in for the repose
-//! rig. [`conformance`] is the test every rig must pass.
+//! rig. [`kind`] says what the catalogue knows of a rig, [`parameter`] what a rig's
+//! parameters are; [`conformance`] is the test every rig must pass.
 
 pub mod bench_bed;
 pub mod catalogue;
@@ -25,6 +26,7 @@ pub mod fall;
 pub mod harvest;
 pub mod incline;
 pub mod kind;
+pub mod parameter;
 pub mod pod_bench;
 pub mod pod_world;
 pub mod press;

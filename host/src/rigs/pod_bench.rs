@@ -14,10 +14,8 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-use super::kind::{
-    diagnosis_parameters, ConditionKey, Quantity, RigKind, RigOptions, RigParameter, WorldKind,
-    Worlds,
-};
+use super::kind::{ConditionKey, Quantity, RigKind, RigOptions, WorldKind, Worlds};
+use super::parameter::{diagnosis_parameters, RigParameter};
 use super::pod_world::observation::ReposeDetails;
 use super::pod_world::parameters::Owner;
 use super::pod_world::setup::RunInputs;

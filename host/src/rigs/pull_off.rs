@@ -24,7 +24,8 @@ use arachis_core::scenario::pull_off::{PullOff, PullOffResult};
 use arachis_core::scenario::ScenarioError;
 use serde_json::json;
 
-use super::kind::{self, diagnosis_parameters, Quantity, RigKind, RigParameter, WorldKind};
+use super::kind::{Quantity, RigKind, WorldKind};
+use super::parameter::{self, diagnosis_parameters, RigParameter};
 use crate::arena::{OwnedBonds, OwnedStorage};
 use crate::calibration::{ParameterValues, Responses, Rig, RigError, RunRequest};
 use crate::limits::Limits;
@@ -93,7 +94,7 @@ pub enum Setting {
 }
 
 /// One settable parameter of the rig.
-pub type Parameter = kind::Parameter<Setting>;
+pub type Parameter = parameter::Parameter<Setting>;
 
 /// Seed 001 Table 5's factors, in its order. A diagnosis varies the coefficients by a
 /// hundredth, the junction's stiffness and strength by 1e4 (N/m³, Pa) and its radius by

@@ -26,7 +26,8 @@ use arachis_core::prelude::*;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
 
-use super::kind::{BuildRig, ConditionKey, Quantity, RigKind, RigParameter, Role, WorldKind};
+use super::kind::{BuildRig, ConditionKey, Quantity, RigKind, WorldKind};
+use super::parameter::{RigParameter, Role};
 use crate::arena::OwnedStorage;
 use crate::calibration::{ParameterValues, Responses, Rig, RigError, RunRequest};
 use crate::limits::Limits;

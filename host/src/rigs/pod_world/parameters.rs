@@ -21,7 +21,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::limits::Limits;
-use crate::rigs::kind::Parameter;
+use crate::rigs::parameter::Parameter;
 
 /// What a parameter sets: a property of a material or of a contact pair.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -6,7 +6,7 @@ use super::Validator;
 use crate::limits::Limits;
 use crate::nearest_name::nearest_name;
 use crate::rigs::catalogue;
-use crate::rigs::kind::RigParameter;
+use crate::rigs::parameter::RigParameter;
 use crate::rigs::pod_world::parameters::{self, lookup, Owner};
 use crate::study::file_format::StudyFile;
 use crate::study::key_path::KeyPath;
