@@ -5,19 +5,20 @@
 #![deny(missing_docs)]
 
 pub mod arena;
-pub mod calibrate;
+pub mod calibration;
 pub mod cli;
 pub mod diagnose;
 pub mod doe;
-pub mod experiments;
 pub mod harvest;
 pub mod io;
 pub mod lab;
+pub mod limits;
+pub mod nearest_name;
 pub mod optimize;
 pub mod plant;
-pub mod plant_calibration;
-pub mod plant_study;
+pub mod report;
 pub mod repose;
+pub mod rigs;
 pub mod shapes;
 pub mod stats;
 pub mod stepping;

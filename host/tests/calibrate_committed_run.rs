@@ -19,8 +19,12 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use arachis::calibrate::{calibrate, CalibrateOptions, DemExperiment, Progress, Simulator};
-use arachis::study::{Experiment, Study};
+use arachis::calibration::{calibrate, Executor, Progress, Rig, RunRequest};
+use arachis::report::{write_calibration, Provenance};
+use arachis::rigs::pod_bench::PodBenchRig;
+use arachis::rigs::pod_world::ModeName;
+use arachis::rigs::repose_cylinder::TEST as REPOSE;
+use arachis::study::Study;
 
 const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
 /// The largest accepted validation error, % (issue 4 must-show).
@@ -47,15 +51,19 @@ fn the_committed_quick_dem_calibration_replays_byte_identical_and_validates_with
     let committed_calibration: serde_json::Value = serde_json::from_slice(&committed_json).unwrap();
     let first_validation = &committed_calibration["validation"]["runs"][0];
 
-    let dem = DemExperiment::new(&study);
-    let options = CalibrateOptions {
-        mode: None,
-        jobs: Some(1),
-        out_dir: out.clone(),
-        progress: Progress::hidden(),
-    };
+    let dem = PodBenchRig::new(study.pod_world().unwrap(), REPOSE, ModeName::Quick);
+    let problem = study.problem(&dem, &dem).unwrap();
+    let executor = Executor::new(Some(1), Some(&out.join("runs")), Progress::hidden()).unwrap();
     let (outcome, resimulated) = rayon::join(
-        || calibrate(&study, &dem, &options).unwrap(),
+        || {
+            let outcome = calibrate(&problem, &executor).unwrap();
+            let provenance = Provenance {
+                study: study.name().to_owned(),
+                mode: "quick".into(),
+            };
+            write_calibration(&problem, &outcome.stages, &provenance, &out).unwrap();
+            outcome
+        },
         || {
             // The first validation pile, from its settings and replicate alone.
             let values: BTreeMap<String, f64> =
@@ -63,16 +71,18 @@ fn the_committed_quick_dem_calibration_replays_byte_identical_and_validates_with
             let condition: BTreeMap<String, f64> =
                 serde_json::from_value(committed_calibration["validation"]["condition"].clone())
                     .unwrap();
-            let mut spec = study
-                .run_spec(Experiment::Repose, &condition, &values, "quick")
-                .unwrap();
-            spec.simulation.random_seed += first_validation["replicate"].as_u64().unwrap();
+            let request = RunRequest {
+                values: &values,
+                condition: &condition,
+                replicate: first_validation["replicate"].as_u64().unwrap() as u32,
+            };
+            let fresh = PodBenchRig::new(study.pod_world().unwrap(), REPOSE, ModeName::Quick);
             assert_eq!(
-                spec.spec_hash().to_string(),
+                fresh.run_spec(&request).unwrap().spec_hash().to_string(),
                 first_validation["spec_hash"].as_str().unwrap(),
                 "the rebuilt specification is not the committed run's"
             );
-            DemExperiment::new(&study).simulate(&spec).unwrap().response
+            fresh.run(&request).unwrap()["repose_angle"]
         },
     );
 
@@ -88,7 +98,7 @@ fn the_committed_quick_dem_calibration_replays_byte_identical_and_validates_with
         cached.to_bits(),
         "re-simulated {resimulated}° against the cached {cached}°"
     );
-    let v = &outcome.calibration.validation;
+    let v = &outcome.stages.validation;
     let psi = 100.0 * (v.simulated - v.measured).abs() / v.measured;
     eprintln!(
         "validation: {:.3}° ± {:.3}° over {} piles against {}°, ψ = {psi:.3} %",

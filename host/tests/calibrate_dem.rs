@@ -1,10 +1,10 @@
-//! The calibration's DEM simulator (`calibrate::DemExperiment`) on one real pile: the
-//! cheap piece of the end-to-end DEM calibration (the whole quick calibration is 44 piles,
+//! The pod repose rig (`rigs::pod_bench::PodBenchRig`) on one real pile: the cheap piece
+//! of the end-to-end DEM calibration (the whole quick calibration is 44 piles,
 //! about 16 CPU-minutes, too slow for CI; `calibrate_committed_run` replays its committed run).
 //!
 //! One quick-mode repose spec at the seed's optimum (seed 000 §3.6.2), on the test pile of
 //! `quick_pile_support` (150 pods × 3 spheres), one pile of about 13 CPU-s:
-//! - the adapter answers what `run_experiment` answers for the spec's values, mode and seed
+//! - the adapter answers what `run_pod_test` answers for the spec's values, mode and seed
 //!   (bit for bit);
 //! - a second adapter, with nothing in memory (as after a resumed run), draws the pile
 //!   picture by simulating the spec again, and its caption prints the same angle: the
@@ -13,10 +13,10 @@
 
 use std::collections::BTreeMap;
 
-use arachis::calibrate::dem::PILE_PICTURE;
-use arachis::calibrate::{DemExperiment, Simulator};
-use arachis::experiments::{run_experiment, ExperimentKind, ModeName, RunOptions};
-use arachis::study::Experiment;
+use arachis::calibration::{Rig, RunRequest};
+use arachis::rigs::pod_bench::{parameter_values, run_pod_test, PodBenchRig, PILE_PICTURE};
+use arachis::rigs::pod_world::{ModeName, RunOptions};
+use arachis::rigs::repose_cylinder::TEST as REPOSE;
 
 mod quick_pile_support;
 use quick_pile_support::test_pile_study;
@@ -31,31 +31,36 @@ fn dem_adapter_answers_like_the_rig_and_redraws_the_same_pile() {
     ]
     .into_iter()
     .collect();
-    let spec = study
-        .run_spec(Experiment::Repose, &BTreeMap::new(), &values, "quick")
-        .unwrap();
-    let dem = DemExperiment::new(&study);
-    let answered = dem.simulate(&spec).unwrap().response;
+    let condition = BTreeMap::new();
+    let request = RunRequest {
+        values: &values,
+        condition: &condition,
+        replicate: 0,
+    };
+    let dem = PodBenchRig::new(study.pod_world().unwrap(), REPOSE, ModeName::Quick);
+    let spec = dem.run_spec(&request).unwrap();
+    let answered = dem.run(&request).unwrap()["repose_angle"];
 
     // The direct rig run and the redraw by a fresh adapter (nothing in memory, as after a
     // resumed calibration) run side by side.
     let dir = tempfile::tempdir().unwrap();
-    let fresh = DemExperiment::new(&study);
+    let fresh = PodBenchRig::new(study.pod_world().unwrap(), REPOSE, ModeName::Quick);
     let (direct, path) = rayon::join(
         || {
-            run_experiment(
-                &study,
-                ExperimentKind::Repose,
-                &arachis::calibrate::parameter_values(&spec),
+            run_pod_test(
+                &study.pod_world().unwrap(),
+                REPOSE,
+                &condition,
+                &parameter_values(&spec),
                 ModeName::Quick,
                 spec.simulation.random_seed,
                 &RunOptions::default(),
             )
             .unwrap()
         },
-        || fresh.pile_picture(&spec, dir.path()).unwrap().unwrap(),
+        || fresh.picture(&request, dir.path()).unwrap().unwrap(),
     );
-    eprintln!("adapter {answered} °, run_experiment {} °", direct.value);
+    eprintln!("adapter {answered} °, run_pod_test {} °", direct.value);
     assert_eq!(answered.to_bits(), direct.value.to_bits());
     assert_eq!(path, dir.path().join(PILE_PICTURE));
     let svg = std::fs::read_to_string(&path).unwrap();

@@ -7,24 +7,23 @@
 //! `cargo test -p arachis --test diagnose_hysteretic -- --nocapture` prints the rates.
 
 mod diagnose_support;
-use arachis::diagnose::experiment::ExperimentKind;
-use arachis::diagnose::study::Diagnosis;
+use arachis::study::diagnosis::DiagnosisSection;
 use diagnose_support::*;
 
 /// Hidden plastic fraction λ.
 const LAMBDA: f64 = 0.04;
 
 /// The tutorial template plus an unload experiment at the press conditions.
-fn with_unload() -> Diagnosis {
+fn with_unload() -> DiagnosisSection {
     let mut study = template();
     let press = study
         .experiment
         .iter()
-        .find(|e| e.kind == ExperimentKind::Press)
+        .find(|e| e.kind == "press")
         .unwrap()
         .clone();
     let mut unload = press;
-    unload.kind = ExperimentKind::Unload;
+    unload.kind = "unload".to_owned();
     study.experiment.push(unload);
     study
 }

@@ -6,14 +6,13 @@
 //! experiment to be identifiable).
 
 mod diagnose_support;
-use arachis::diagnose::experiment::ExperimentKind;
 use arachis::diagnose::score::Status;
 use diagnose_support::*;
 
 #[test]
 fn one_condition_is_not_identifiable() {
     let mut study = template();
-    study.experiment.retain(|e| e.kind.name() == "rebound");
+    study.experiment.retain(|e| e.kind == "rebound");
     study.experiment[0].point.truncate(1);
     let c = case_for(study, Some(("viscoelastic", 2.0e-5)));
     assert!(c.effect_size_sigma >= 3.0);
@@ -63,10 +62,10 @@ fn full_design_identifies_every_effect() {
     let mut unload = study
         .experiment
         .iter()
-        .find(|e| e.kind == ExperimentKind::Press)
+        .find(|e| e.kind == "press")
         .unwrap()
         .clone();
-    unload.kind = ExperimentKind::Unload;
+    unload.kind = "unload".to_owned();
     study.experiment.push(unload);
     let r = case_for(study, None).ranking(0);
     for cand in &r.candidates {

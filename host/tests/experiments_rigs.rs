@@ -2,7 +2,8 @@
 
 use std::path::Path;
 
-use arachis::experiments::*;
+use arachis::rigs::pod_world::*;
+use arachis::study::Experiment as ExperimentKind;
 use arachis::study::Study;
 
 const STUDY: &str = "../testdata/peanut-pods-saline/study.toml";
@@ -33,15 +34,15 @@ fn slide_angle_matches_atan_mu() {
     let study = study_with_spheres(4);
     for mu in [0.3, 0.589] {
         let v = values(&[("pod-steel.static_friction", mu)]);
-        let obs = run_experiment(
-            &study,
-            ExperimentKind::InclineSlide,
-            &v,
-            ModeName::Quick,
-            1,
-            &RunOptions::default(),
-        )
-        .unwrap();
+        let obs = study
+            .run_experiment(
+                ExperimentKind::InclineSlide,
+                &v,
+                ModeName::Quick,
+                1,
+                &RunOptions::default(),
+            )
+            .unwrap();
         let expected = mu.atan().to_degrees();
         assert_eq!(obs.unit, "deg");
         assert!(
@@ -59,15 +60,15 @@ fn slide_angle_matches_atan_mu() {
 #[test]
 fn compression_of_one_sphere_recovers_youngs_modulus() {
     let study = study_with_spheres(1);
-    let obs = run_experiment(
-        &study,
-        ExperimentKind::Compression,
-        &ParameterValues::new(),
-        ModeName::Quick,
-        1,
-        &RunOptions::default(),
-    )
-    .unwrap();
+    let obs = study
+        .run_experiment(
+            ExperimentKind::Compression,
+            &ParameterValues::new(),
+            ModeName::Quick,
+            1,
+            &RunOptions::default(),
+        )
+        .unwrap();
     let pod = &study.file().materials["pod"];
     let e = 2.0 * pod.shear_modulus_pa * (1.0 + pod.poisson);
     assert_eq!(obs.unit, "Pa");
@@ -83,15 +84,15 @@ fn same_inputs_give_the_same_bits() {
     let study = study_with_spheres(4);
     let v = values(&[("pod-steel.static_friction", 0.5)]);
     let run = || {
-        run_experiment(
-            &study,
-            ExperimentKind::InclineSlide,
-            &v,
-            ModeName::Quick,
-            7,
-            &RunOptions::default(),
-        )
-        .unwrap()
+        study
+            .run_experiment(
+                ExperimentKind::InclineSlide,
+                &v,
+                ModeName::Quick,
+                7,
+                &RunOptions::default(),
+            )
+            .unwrap()
     };
     let (a, b) = (run(), run());
     assert_eq!(a.digest, b.digest);
@@ -103,15 +104,15 @@ fn poisson_above_half_runs_only_with_the_study_opt_in() {
     let study = study_with_spheres(1);
     // The shipped study opts in (seed 000 Table 3 screens ν = 0.586).
     let v = values(&[("pod.poisson", 0.586)]);
-    let obs = run_experiment(
-        &study,
-        ExperimentKind::Compression,
-        &v,
-        ModeName::Quick,
-        1,
-        &RunOptions::default(),
-    )
-    .unwrap();
+    let obs = study
+        .run_experiment(
+            ExperimentKind::Compression,
+            &v,
+            ModeName::Quick,
+            1,
+            &RunOptions::default(),
+        )
+        .unwrap();
     assert!(obs.value.is_finite() && obs.value > 0.0);
     // Without the opt-in the same value is refused before any simulation.
     let text = std::fs::read_to_string(STUDY)
@@ -119,16 +120,16 @@ fn poisson_above_half_runs_only_with_the_study_opt_in() {
         .replace("poisson_above_half = true", "");
     let strict = Study::from_toml(&text, Path::new(STUDY));
     if let Ok(strict) = strict {
-        let err = run_experiment(
-            &strict,
-            ExperimentKind::Compression,
-            &v,
-            ModeName::Quick,
-            1,
-            &RunOptions::default(),
-        )
-        .unwrap_err()
-        .to_string();
+        let err = strict
+            .run_experiment(
+                ExperimentKind::Compression,
+                &v,
+                ModeName::Quick,
+                1,
+                &RunOptions::default(),
+            )
+            .unwrap_err()
+            .to_string();
         assert!(
             err.contains("pod.poisson") && err.contains("0.586"),
             "{err}"
@@ -173,16 +174,16 @@ fn bad_input_is_refused_with_a_clear_message() {
         ("pod.shear_modulus_pa", f64::NAN, "not a finite number"),
     ] {
         let v = values(&[(key, value)]);
-        let e = run_experiment(
-            &study,
-            ExperimentKind::Repose,
-            &v,
-            ModeName::Quick,
-            1,
-            &RunOptions::default(),
-        )
-        .unwrap_err()
-        .to_string();
+        let e = study
+            .run_experiment(
+                ExperimentKind::Repose,
+                &v,
+                ModeName::Quick,
+                1,
+                &RunOptions::default(),
+            )
+            .unwrap_err()
+            .to_string();
         assert!(e.contains(key) && e.contains(words), "{key}={value}: {e}");
     }
 }

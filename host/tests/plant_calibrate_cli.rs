@@ -1,5 +1,6 @@
-//! `arachis plant-calibrate` from the command line: report files, the summary line, and
-//! bad input as clear errors (exit status 2, no report written).
+//! `arachis plant-calibrate`, the alias of `arachis calibrate` on seed 001's built-in
+//! study: it says it is an alias, writes `calibrate`'s report files and the summary line,
+//! and refuses bad input with clear errors (exit status 2, no report written).
 
 mod cli_support;
 use cli_support::arachis;
@@ -17,15 +18,27 @@ fn writes_the_report_and_prints_the_validation() {
         "2",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let line: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(String::from_utf8_lossy(&o.stderr).contains("is an alias"));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let line: serde_json::Value = serde_json::from_str(stdout.lines().last().unwrap()).unwrap();
     assert_eq!(line["passed"], true);
+    assert_eq!(line["carried"], serde_json::json!(["x7", "x8"]));
     assert!(line["relative_error_pct"].as_f64().unwrap() <= 5.0);
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("plant-calibration.json")).unwrap())
             .unwrap();
     assert_eq!(json["format"], "arachis-plant-calibration-1");
     assert_eq!(json["optimum"]["validated_n"], line["validated_n"]);
-    assert!(json["wall_seconds"].as_f64().unwrap() > 0.0);
+    // The alias writes what `calibrate` writes on the shipped study, as c5d1f03 did.
+    let golden = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../testdata/golden-c5d1f03/plant-study/plant-calibration.json"
+    );
+    assert!(
+        std::fs::read(out.join("plant-calibration.json")).unwrap()
+            == std::fs::read(golden).unwrap(),
+        "plant-calibrate wrote other bytes than calibrate on the shipped study"
+    );
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(md.contains("passed"), "{md}");
 }

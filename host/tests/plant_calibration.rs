@@ -1,20 +1,33 @@
-//! Issue 6 must-show: "The calibrated detachment force is within 5 % of the target."
+//! Issue 6 must-show: "The calibrated detachment force is within 5 % of the target", now
+//! through the one calibration engine (issue 17).
 //!
-//! Runs seed 001's whole plan (Plackett–Burman + 3 centre points → steepest ascent →
-//! central composite, α = 1.414, 5 centre points → optimum → validation pull) on the
-//! fixed-point pull-off rig; about 40 pulls of a few hundredths of a second each.
+//! Runs seed 001's plan (Plackett–Burman + 3 centre points → steepest ascent → central
+//! composite, α = 1.414, 5 centre points → optimum → validation pull) of the shipped study
+//! on the fixed-point pull-off rig; about 40 pulls of a few hundredths of a second each.
 
-use arachis::calibrate::Progress;
-use arachis::plant_calibration::factors::SEED_SIGNIFICANT;
-use arachis::plant_calibration::{calibrate, report, PullOffSimulator, TARGET_DETACHMENT_N};
-use arachis_core::scenario::PullOff;
+use arachis::calibration::{calibrate, Executor, Progress};
+use arachis::report::pull_off::{markdown, PlantCalibration};
+use arachis::rigs::pull_off::PullOffRig;
+use arachis::rigs::pull_off::SEED_SIGNIFICANT;
+use arachis::study::Study;
+
+/// The shipped study calibrated with `named` factors for the path and the design (`None`:
+/// the screening's choice).
+fn calibrated(named: Option<Vec<String>>) -> PlantCalibration {
+    let mut study = Study::shipped_pull_off();
+    study.set_named_factors(named, "this test").unwrap();
+    let rig = PullOffRig {
+        base: study.pull_off_setup().unwrap(),
+    };
+    let problem = study.problem(&rig, &rig).unwrap();
+    let executor = Executor::new(None, None, Progress::hidden()).unwrap();
+    let outcome = calibrate(&problem, &executor).unwrap();
+    PlantCalibration::new(&problem, &outcome.stages, "test", &rig)
+}
 
 #[test]
 fn seed001_plan_calibrates_the_junction_to_the_target() {
-    let sim = PullOffSimulator {
-        base: PullOff::default(),
-    };
-    let cal = calibrate(&sim, TARGET_DETACHMENT_N, None, &Progress::hidden()).unwrap();
+    let cal = calibrated(None);
     let o = &cal.optimum;
 
     // The must-show: the validation pull at the optimum within 5 % of 7.18 N.
@@ -50,8 +63,8 @@ fn seed001_plan_calibrates_the_junction_to_the_target() {
         "{:?}",
         s.significant
     );
-    let x8 = s.effect("x8").unwrap().effect;
-    assert!(x8 > 0.0);
+    let effect = |label: &str| s.effects.iter().find(|e| e.label == label).unwrap();
+    assert!(effect("x8").effect > 0.0);
     // Why x7, x2 and x4 differ from the seed, with numbers: an axial pull does not load the
     // junction's shear stiffness, and no unbonded pair touches before the break, so x1–x7
     // show only what the x8·x9 interaction of F = σc·πRb² aliases onto every column of a
@@ -60,7 +73,7 @@ fn seed001_plan_calibrates_the_junction_to_the_target() {
     let alias = s.x8_x9_alias_effect_n;
     assert!((alias - 0.1843).abs() < 1e-3, "{alias}");
     for label in ["x1", "x2", "x3", "x4", "x5", "x6", "x7"] {
-        let e = s.effect(label).unwrap();
+        let e = effect(label);
         assert!(
             (e.effect.abs() - alias).abs() < 0.02 * alias && e.p >= 0.05,
             "{label}: effect {} N (alias {alias} N), p {}",
@@ -74,21 +87,19 @@ fn seed001_plan_calibrates_the_junction_to_the_target() {
     assert!(cal.central_composite.anova.fit.r2 > 0.99);
 
     // The report renders every stage.
-    let md = report::markdown(&cal, 0.0);
+    let md = markdown(&cal);
     for heading in ["## 1.", "## 2.", "## 3.", "## 4."] {
         assert!(md.contains(heading), "{md}");
     }
 }
 
-/// Seed 001 carried x7 and x8 (Table 7's **); forced onto the same path the plan still
-/// reaches the target, through x8 alone: x7 moves but does not act in an axial pull.
+/// Seed 001 carried x7 and x8 (Table 7's **), as the shipped study does; on the same path
+/// the plan still reaches the target, through x8 alone: x7 moves but does not act in an
+/// axial pull.
 #[test]
 fn seed001_carried_factors_also_reach_the_target() {
-    let sim = PullOffSimulator {
-        base: PullOff::default(),
-    };
-    let carry = ["x7".to_owned(), "x8".to_owned()];
-    let cal = calibrate(&sim, TARGET_DETACHMENT_N, Some(&carry), &Progress::hidden()).unwrap();
+    let carry = vec!["x7".to_owned(), "x8".to_owned()];
+    let cal = calibrated(Some(carry.clone()));
     assert_eq!(cal.screening.carried, carry);
     assert!(cal.optimum.passed, "{} %", cal.optimum.relative_error_pct);
     let ccd = &cal.central_composite.anova;

@@ -8,7 +8,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
-use arachis::plant_study::PlantStudy;
+use arachis::study::Study;
 
 mod cli_support;
 use cli_support::arachis;
@@ -226,7 +226,7 @@ fn bad_plant_studies_are_rejected_before_any_pull() {
     for (name, edit, key, reason, line_text) in &cases {
         let path = bad_study(dir.path(), name, edit);
         // Library: every error names file, key, line and reason.
-        let errors = PlantStudy::load(&path).expect_err(name);
+        let errors = Study::load(&path).expect_err(name);
         let e = errors
             .errors()
             .iter()
@@ -288,6 +288,7 @@ fn study_check_validates_a_plant_study() {
     );
     let o = arachis(&["study", "check", shipped().to_str().unwrap(), "--json"]);
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    assert_eq!(v["measurement"]["value_n"], 7.18);
-    assert_eq!(v["factors"]["x8"]["high"], 1.4e6);
+    assert_eq!(v["study"]["measurement"]["value_n"], 7.18);
+    assert_eq!(v["study"]["factors"]["x8"]["high"], 1.4e6);
+    assert_eq!(v["derived"]["target_value"], 7.18);
 }

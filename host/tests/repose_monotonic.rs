@@ -19,7 +19,8 @@
 
 use std::sync::Arc;
 
-use arachis::experiments::*;
+use arachis::rigs::pod_world::*;
+use arachis::study::Experiment as ExperimentKind;
 use rayon::prelude::*;
 
 mod quick_pile_support;
@@ -64,16 +65,16 @@ fn repose_angle_rises_with_pod_pod_static_and_rolling_friction() {
             ]
             .into_iter()
             .collect();
-            run_experiment(
-                &study,
-                ExperimentKind::Repose,
-                &values,
-                ModeName::Quick,
-                seed,
-                &options,
-            )
-            .unwrap()
-            .value
+            study
+                .run_experiment(
+                    ExperimentKind::Repose,
+                    &values,
+                    ModeName::Quick,
+                    seed,
+                    &options,
+                )
+                .unwrap()
+                .value
         })
         .collect();
     let k = SEEDS.len();

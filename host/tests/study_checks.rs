@@ -40,7 +40,7 @@ const MEASUREMENT: &str = "mean = 31.06\nn = 10\n";
 #[test]
 fn replicates_give_mean_and_count() {
     let study = with(&[(MEASUREMENT, "values = [31.0, 31.2, 30.9, 31.1]\n")]).unwrap();
-    let t = study.target();
+    let t = study.target().unwrap();
     assert!(t.has_replicates());
     assert_eq!(t.replicates(), Some(4));
     assert!((t.mean().unwrap() - 31.05).abs() < 1e-12);
@@ -67,8 +67,8 @@ fn several_conditions_with_replicates_load_and_the_target_picks_one() {
     ])
     .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(study.file().measurements.len(), 3);
-    assert!((study.target().mean().unwrap() - 29.7).abs() < 1e-12);
-    assert!((study.validation().mean().unwrap() - 31.1).abs() < 1e-12);
+    assert!((study.target().unwrap().mean().unwrap() - 29.7).abs() < 1e-12);
+    assert!((study.validation().unwrap().mean().unwrap() - 31.1).abs() < 1e-12);
 }
 
 #[test]

@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use arachis::study::nearest_name::edit_distance;
+use arachis::nearest_name::edit_distance;
 use arachis::study::parameters::REGISTRY;
 use arachis::study::Study;
 use proptest::prelude::*;

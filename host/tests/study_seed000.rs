@@ -44,7 +44,10 @@ fn materials_and_pairs_are_the_printed_numbers() {
     );
     // Seed 001 Table 1 pod size.
     assert_eq!(
-        (s.pods.length_mm, s.pods.width_mm, s.pods.thickness_mm),
+        {
+            let pods = s.pods.as_ref().unwrap();
+            (pods.length_mm, pods.width_mm, pods.thickness_mm)
+        },
         (34.27, 18.29, 15.76)
     );
     // Seed 000 §3.4: the held pod–steel values.
@@ -64,14 +67,14 @@ fn materials_and_pairs_are_the_printed_numbers() {
 #[test]
 fn target_is_the_bench_angle_as_a_printed_summary() {
     let study = shipped();
-    let t = study.target();
-    assert_eq!(t.experiment, Experiment::Repose);
+    let t = study.target().unwrap();
+    assert_eq!(t.experiment, Experiment::Repose.name());
     assert_eq!(t.mean(), Some(31.06)); // seed 000 §3.6.1
     assert_eq!(t.replicates(), Some(10)); // "repeated 10 times"
     assert!(!t.has_replicates(), "the seed prints only the mean");
     assert_eq!(t.sd, None, "the seed prints no SD");
     assert_eq!(t.condition["lift_speed_m_s"], 0.05);
-    assert_eq!(study.validation(), t);
+    assert_eq!(study.validation(), Some(t));
 }
 
 /// Seed 000 Table 6 and Table 8 print ψ = |ζ′ − ζ|/ζ × 100 % (eq. (21)) against the bench
@@ -79,7 +82,7 @@ fn target_is_the_bench_angle_as_a_printed_summary() {
 /// last digit (0.005 %) plus the effect of ζ′'s rounding, 0.005°/31.06° × 100 % = 0.016 %.
 #[test]
 fn target_reproduces_the_printed_relative_errors() {
-    let target = shipped().target().mean().unwrap();
+    let target = shipped().target().unwrap().mean().unwrap();
     let tolerance = 0.005 + 0.005 / target * 100.0;
     let mut checked = 0;
     for table in [
@@ -178,12 +181,9 @@ fn held_values_are_the_printed_ones_and_the_range_centres() {
 #[test]
 fn plan_matches_the_printed_designs() {
     let study = shipped();
-    let plan = &study.file().plan;
-    assert_eq!(plan.screening.design.runs(), 12);
-    assert_eq!(
-        plan.screening.design.columns() - study.varied().len() as u32,
-        3
-    );
+    let plan = study.file().plan.as_ref().unwrap();
+    assert_eq!(plan.screening.design_runs(), 12);
+    assert_eq!(plan.screening.columns() - study.varied().len() as u32, 3);
     let path = CsvTable::read(&repo(
         "testdata/seed-tables/seed000_table6_steepest_ascent.csv",
     ))
@@ -201,8 +201,8 @@ fn plan_matches_the_printed_designs() {
             .range
             .clone();
         let first = path.f64_column(label).unwrap()[0];
-        let origin =
-            range.centre() + plan.steepest_ascent.origin_coded * (range.high - range.low) / 2.0;
+        let origin = range.centre()
+            + plan.steepest_ascent.origin_coded.unwrap() * (range.high - range.low) / 2.0;
         assert!(
             (first - origin).abs() < 1e-12,
             "{label}: {first} vs {origin}"
@@ -223,10 +223,14 @@ fn plan_matches_the_printed_designs() {
     let centres = (0..a.len())
         .filter(|&i| (a[i], b[i], c[i]) == (0.334, 0.853, 0.341))
         .count();
-    assert_eq!(centres as u32, plan.box_behnken.centre_points);
+    assert_eq!(
+        centres as u32,
+        plan.box_behnken.as_ref().unwrap().centre_points
+    );
     assert_eq!(plan.modes["full"].pods, 900); // §2.7
-    assert_eq!(plan.simulation.dt_rayleigh_fraction, 0.2); // §2.7
-    assert_eq!(plan.simulation.repose.lift_speed_m_s, 0.05); // §2.7
+    let simulation = plan.simulation.as_ref().unwrap();
+    assert_eq!(simulation.dt_rayleigh_fraction, 0.2); // §2.7
+    assert_eq!(simulation.repose.lift_speed_m_s, 0.05); // §2.7
 }
 
 #[test]
@@ -269,7 +273,7 @@ fn summary_names_what_a_user_checks() {
 #[test]
 fn spec_hash_is_stable_and_tells_runs_apart() {
     let study = shipped();
-    let condition = study.target().condition.clone();
+    let condition = study.target().unwrap().condition.clone();
     let optimum: BTreeMap<String, f64> = [
         ("pod-pod.restitution", 0.335),
         ("pod-pod.static_friction", 0.854),
@@ -340,7 +344,7 @@ fn assert_keys_sorted(value: &serde_json::Value) {
 /// Published FNV-1a 64 test vectors (Fowler–Noll–Vo reference test suite).
 #[test]
 fn fnv1a_matches_published_vectors() {
-    use arachis::study::spec_hash::fnv1a_64;
+    use arachis::calibration::spec_hash::fnv1a_64;
     assert_eq!(fnv1a_64(b""), 0xcbf29ce484222325);
     assert_eq!(fnv1a_64(b"a"), 0xaf63dc4c8601ec8c);
     assert_eq!(fnv1a_64(b"foobar"), 0x85944171f73967e8);
@@ -360,7 +364,7 @@ fn spec_hash_golden_value() {
         .unwrap();
     let text = spec.canonical_json();
     assert_eq!(
-        arachis::study::spec_hash::fnv1a_64(text.as_bytes()),
+        arachis::calibration::spec_hash::fnv1a_64(text.as_bytes()),
         spec.spec_hash().0
     );
     assert_eq!(spec.spec_hash().to_string(), GOLDEN, "{text}");

@@ -1,39 +1,45 @@
-//! `arachis calibrate STUDY [--quick|--full|--mode NAME] [--jobs N] [--out DIR] [--quiet]`:
-//! seed 000's calibration plan end to end (issue 4 §4–§5) — screening, steepest ascent,
-//! Box–Behnken, desirability optimum, validation — writing `report.md`, `figures/*.svg`,
-//! `calibration.json` and one `runs/<spec hash>.json` per simulation into the output folder.
+//! `arachis calibrate STUDY [--quick|--full|--mode NAME] [--jobs N] [--out DIR] [--quiet]
+//! [--strict] [--simulator dem|surrogate]`: the calibration plan of any study — screening,
+//! steepest ascent, a Box–Behnken or central composite design, desirability optimum,
+//! validation — on the study's rig, writing the report into the output folder with one
+//! `runs/<spec hash>.json` per run.
 //!
 //! The study is loaded and validated before anything runs, so a bad file stops with its
 //! file, key and reason. Rerunning into the same folder replays finished runs from
-//! `runs/`, so an interrupted calibration resumes and ends with the same bytes.
+//! `runs/`, so an interrupted calibration resumes and ends with the same bytes. A study
+//! writes `calibration.json`, except a pull-off study (seed 001's, with `[rig]`), which
+//! writes seed 001's `plant-calibration.json` for one release.
 
-use std::path::PathBuf;
-use std::time::Duration;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
 
-use anyhow::Context;
+use anyhow::{bail, ensure, Context};
 use clap::ValueEnum;
 
-use crate::calibrate::{
-    calibrate, CalibrateOptions, DemExperiment, Progress, RunResult, Seed000Surrogate,
-    SimulationError, Simulator,
-};
-use crate::study::{RunSpec, Study};
+use crate::calibration::{calibrate, Executor, Outcome, Problem, Progress, Rig};
+use crate::report::{pull_off, write_calibration, Provenance};
+use crate::rigs::kind::RigOptions;
+use crate::rigs::pod_bench::PodBenchRig;
+use crate::rigs::pod_world::{Experiment, ModeName};
+use crate::rigs::pull_off::PullOffRig;
+use crate::rigs::repose_surrogate::{Seed000Surrogate, SurrogateRig};
+use crate::study::Study;
 
 /// Which simulator answers the runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum SimulatorChoice {
-    /// The repose DEM experiment (cylinder lifting, seed 000 §2.7).
+    /// The study's DEM rig.
     Dem,
-    /// Seed 000's closed-form surrogate: a test stand-in, NOT a DEM simulation.
+    /// Seed 000's closed-form surrogate of the repose rig: a test stand-in, NOT a DEM
+    /// simulation.
     Surrogate,
 }
 
 /// Arguments of `arachis calibrate`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// The study file (TOML), e.g. testdata/peanut-pods-saline/study.toml; a plant pull-off
-    /// study (`[study] kind = "pull_off"`, e.g. testdata/peanut-plant/study.toml) runs seed
-    /// 001's junction calibration instead.
+    /// The study file (TOML), e.g. testdata/peanut-pods-saline/study.toml or the plant
+    /// pull-off study testdata/peanut-plant/study.toml.
     pub study: PathBuf,
     /// Quick mode (`[plan.modes.quick]`: fewer pods, coarser filling).
     #[arg(long, conflicts_with_all = ["full", "mode"])]
@@ -47,13 +53,14 @@ pub struct Args {
     /// Simulations run at once (default: every core).
     #[arg(long, short, value_parser = clap::value_parser!(u32).range(1..))]
     pub jobs: Option<u32>,
-    /// Output folder (default: `calibration-STUDYNAME-MODE`).
+    /// Output folder (default: `calibration-STUDYNAME-MODE`, or `calibration-STUDYNAME`
+    /// for a study without modes).
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
-    /// Exit with status 2 when the validation run misses its limit (for scripts and CI).
+    /// Exit with status 2 when the validation misses its limit (for scripts and CI).
     /// Without it the miss is printed and written to the report, and the exit status is 0:
     /// a completed calibration that misses its target is a finding, not a crash.
     #[arg(long)]
@@ -67,75 +74,136 @@ pub struct Args {
     pub surrogate_delay_ms: u64,
 }
 
-/// The surrogate with a sleep per run (the results, and so the id, are the surrogate's).
-struct Delayed {
-    inner: Seed000Surrogate,
-    delay: Duration,
+impl Args {
+    /// The mode the flags ask for, if any.
+    fn mode(&self) -> Option<String> {
+        if self.quick {
+            Some(ModeName::Quick.as_str().to_owned())
+        } else if self.full {
+            Some(ModeName::Full.as_str().to_owned())
+        } else {
+            self.mode.clone()
+        }
+    }
+
+    fn executor(&self, out: &Path) -> anyhow::Result<Executor> {
+        Ok(Executor::new(
+            self.jobs.map(|j| j as usize),
+            Some(&out.join(crate::calibration::RUNS_DIR)),
+            Progress::new(self.quiet),
+        )?)
+    }
 }
 
-impl Simulator for Delayed {
-    fn id(&self) -> String {
-        self.inner.id()
-    }
-    fn description(&self) -> String {
-        self.inner.description()
-    }
-    fn simulate(&self, spec: &RunSpec) -> Result<RunResult, SimulationError> {
-        std::thread::sleep(self.delay);
-        self.inner.simulate(spec)
-    }
+/// Runs `arachis calibrate`.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    calibrate_study(&args, &Study::load(&args.study)?)
 }
 
-/// The simulator `choice` names, for `study`.
-fn simulator<'a>(
-    choice: SimulatorChoice,
+/// The run mode of `study` the flags ask for (checked against its `[plan.modes]`), `None`
+/// for a study whose rigs have no modes.
+fn mode(args: &Args, study: &Study) -> anyhow::Result<Option<(String, ModeName)>> {
+    let plan = study.file().plan.as_ref();
+    let Some(modes) = plan.map(|p| &p.modes).filter(|m| !m.is_empty()) else {
+        ensure!(
+            args.mode().is_none(),
+            "{}: a study without [plan.modes] (a pull-off study: every pull is the same rig) \
+             has no run modes (--quick, --full, --mode)",
+            args.study.display()
+        );
+        return Ok(None);
+    };
+    let name = args
+        .mode()
+        .or_else(|| plan.and_then(|p| p.mode.clone()))
+        .unwrap_or_else(|| ModeName::Quick.as_str().to_owned());
+    if !modes.contains_key(&name) {
+        let known: Vec<&String> = modes.keys().collect();
+        bail!(
+            "calibrating {}: the study cannot be calibrated: no mode '{name}' in \
+             [plan.modes] (the study has {known:?})",
+            args.study.display()
+        );
+    }
+    let parsed = name.parse()?;
+    Ok(Some((name, parsed)))
+}
+
+/// The rig of `experiment`, or the surrogate standing in for the repose rig.
+fn rig<'a>(
     args: &Args,
     study: &'a Study,
-) -> anyhow::Result<Box<dyn Simulator + 'a>> {
-    match choice {
-        SimulatorChoice::Surrogate => Ok(Box::new(Delayed {
-            inner: Seed000Surrogate::default(),
-            delay: Duration::from_millis(args.surrogate_delay_ms),
-        })),
-        SimulatorChoice::Dem => Ok(Box::new(DemExperiment::new(study))),
+    experiment: &str,
+    mode: Option<ModeName>,
+) -> anyhow::Result<Box<dyn Rig + 'a>> {
+    if args.simulator == SimulatorChoice::Dem {
+        let options = RigOptions {
+            mode,
+            ..RigOptions::default()
+        };
+        return Ok(study.rig(experiment, &options)?);
     }
+    let world = study
+        .pod_world()
+        .filter(|_| experiment == Experiment::Repose.name())
+        .with_context(|| {
+            format!(
+                "{}: the surrogate stands in for seed 000's repose runs only, not {experiment}",
+                args.study.display()
+            )
+        })?;
+    Ok(Box::new(SurrogateRig {
+        pod: PodBenchRig::new(
+            world,
+            crate::rigs::repose_cylinder::TEST,
+            mode.unwrap_or(ModeName::Quick),
+        ),
+        surrogate: Seed000Surrogate::default(),
+        delay: Duration::from_millis(args.surrogate_delay_ms),
+    }))
 }
 
-/// Runs `arachis calibrate`. A plant pull-off study (`[study] kind = "pull_off"`) goes to
-/// [`super::calibrate_plant`]; every other file is a seed 000 study.
-pub fn run(args: Args) -> anyhow::Result<()> {
-    if crate::plant_study::is_plant_study(&args.study) {
-        return super::calibrate_plant::run(&args);
-    }
-    let study = Study::load(&args.study)?;
-    let mode = if args.quick {
-        Some("quick".to_owned())
-    } else if args.full {
-        Some("full".to_owned())
-    } else {
-        args.mode.clone()
+/// Calibrates `study` as `args` say, writes its report and prints its summary.
+pub fn calibrate_study(args: &Args, study: &Study) -> anyhow::Result<()> {
+    let mode = mode(args, study)?;
+    let (Some(target), Some(validation)) = (study.target(), study.validation()) else {
+        bail!(
+            "{}: the study has no [plan]: nothing to calibrate",
+            args.study.display()
+        );
     };
-    let mode_name = mode
-        .clone()
-        .unwrap_or_else(|| study.file().plan.mode.clone());
+    let modal = mode.as_ref().map(|(_, m)| *m);
+    let target_rig = rig(args, study, &target.experiment, modal)?;
+    let other_rig = (validation.experiment != target.experiment)
+        .then(|| rig(args, study, &validation.experiment, modal))
+        .transpose()?;
+    let problem = study
+        .problem(
+            target_rig.as_ref(),
+            other_rig.as_deref().unwrap_or(target_rig.as_ref()),
+        )
+        .with_context(|| format!("{}: the study has no [plan]", args.study.display()))?;
+    let name = study.name();
     let out = args.out.clone().unwrap_or_else(|| {
-        PathBuf::from(format!(
-            "calibration-{}-{mode_name}",
-            study.file().study.name
-        ))
+        PathBuf::from(match &mode {
+            Some((m, _)) => format!("calibration-{name}-{m}"),
+            None => format!("calibration-{name}"),
+        })
     });
-    let sim = simulator(args.simulator, &args, &study)?;
-    let options = CalibrateOptions {
-        mode,
-        jobs: args.jobs.map(|j| j as usize),
-        out_dir: out.clone(),
-        progress: Progress::new(args.quiet),
+    let started = Instant::now();
+    let executor = args.executor(&out)?;
+    let outcome = run_problem(args, &problem, &executor)?;
+    if let Some(base) = study.pull_off_setup() {
+        let rig = PullOffRig { base };
+        return report_pull_off(args, &problem, &outcome, name, &rig, &out, started);
+    }
+    let provenance = Provenance {
+        study: name.to_owned(),
+        mode: mode.map_or("-".to_owned(), |(m, _)| m),
     };
-    let started = std::time::Instant::now();
-    let outcome = calibrate(&study, sim.as_ref(), &options)
-        .with_context(|| format!("calibrating {}", args.study.display()))?;
-    let c = &outcome.calibration;
-    let strongest = c
+    let c = write_calibration(&problem, &outcome.stages, &provenance, &out)?;
+    let strongest = outcome
+        .stages
         .screening
         .strongest()
         .map_or("-".to_owned(), |e| format!("{} ({})", e.label, e.name));
@@ -153,9 +221,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     println!(
         "steepest {}: best point {} of {}",
-        c.steepest_ascent.direction,
-        c.steepest_ascent.best,
-        c.steepest_ascent.runs.len()
+        c.steepest_ascent.stage.direction.name(),
+        c.steepest_ascent.stage.best,
+        c.steepest_ascent.stage.runs.len()
     );
     let params: Vec<String> = c
         .optimum
@@ -167,35 +235,111 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     println!(
         "optimum: {} (D = {:.4}, predicted {:.3} {})",
         params.join(", "),
-        c.optimum.desirability,
-        c.optimum.predicted,
+        c.optimum.stage.desirability,
+        c.optimum.stage.predicted,
         c.target.unit
     );
-    let v = &c.validation;
+    let (v, unit) = (&c.validation.stage, &c.validation.unit);
     println!(
-        "validation: simulated {:.3} {} vs measured {} {}: relative error {:.3} % (limit {} %)",
-        v.simulated, v.unit, v.measured, v.unit, v.relative_error_pct, v.max_relative_error_pct
+        "validation: simulated {:.3} {unit} vs measured {} {unit}: relative error {:.3} % (limit \
+         {} %)",
+        v.simulated, v.measured, v.relative_error_pct, v.max_relative_error_pct
     );
     println!(
         "{} runs simulated, {} replayed from {}, in {:.1} s",
         outcome.simulated,
         outcome.replayed,
-        out.join(crate::calibrate::RUNS_DIR).display(),
+        out.join(crate::calibration::RUNS_DIR).display(),
         started.elapsed().as_secs_f64()
     );
-    println!(
-        "report: {}",
-        out.join(crate::calibrate::report::REPORT_FILE).display()
-    );
-    if !v.passed {
-        let miss = format!(
-            "validation failed: relative error {:.3} % exceeds {} %",
-            v.relative_error_pct, v.max_relative_error_pct
-        );
-        if args.strict {
-            anyhow::bail!(miss);
-        }
-        println!("{miss} (see the report; --strict makes this an error)");
+    println!("report: {}", out.join(crate::report::REPORT_FILE).display());
+    validation_verdict(
+        args,
+        v.passed,
+        v.relative_error_pct,
+        v.max_relative_error_pct,
+    )
+}
+
+/// Runs `problem`, naming the study in the error.
+fn run_problem(args: &Args, problem: &Problem<'_>, executor: &Executor) -> anyhow::Result<Outcome> {
+    calibrate(problem, executor).with_context(|| format!("calibrating {}", args.study.display()))
+}
+
+/// Prints a missed validation, or fails with it under `--strict`.
+fn validation_verdict(args: &Args, passed: bool, psi: f64, limit: f64) -> anyhow::Result<()> {
+    if passed {
+        return Ok(());
     }
+    let miss = format!("validation failed: relative error {psi:.3} % exceeds {limit} %");
+    if args.strict {
+        bail!(miss);
+    }
+    println!("{miss} (see the report; --strict makes this an error)");
     Ok(())
+}
+
+/// Writes seed 001's pull-off report and prints its summary.
+fn report_pull_off(
+    args: &Args,
+    problem: &Problem<'_>,
+    outcome: &Outcome,
+    name: &str,
+    rig: &PullOffRig,
+    out: &Path,
+    started: Instant,
+) -> anyhow::Result<()> {
+    let wall = started.elapsed().as_secs_f64();
+    let cal = pull_off::PlantCalibration::new(problem, &outcome.stages, name, rig);
+    pull_off::write_files(&cal, out)
+        .with_context(|| format!("cannot write the report into {}", out.display()))?;
+
+    let s = &cal.screening;
+    println!("study {name} (pull-off), {} pulls", cal.runs);
+    println!(
+        "screening: significant [{}]; the screening's choice [{}]; carried [{}]",
+        s.significant.join(", "),
+        s.screening_choice.join(", "),
+        s.carried.join(", ")
+    );
+    for note in s.notes.iter().chain(&cal.path.notes) {
+        println!("note: {note}");
+    }
+    let c = &cal.central_composite;
+    println!(
+        "steepest {}: best point {} of {}; central composite on [{}], α = {}, {} runs",
+        cal.path.direction,
+        cal.path.best,
+        cal.path.runs.len(),
+        cal.path.factors.join(", "),
+        c.alpha,
+        c.runs.len()
+    );
+    let o = &cal.optimum;
+    let params: Vec<String> = o
+        .calibrated
+        .iter()
+        .map(|(l, v)| format!("{l} = {v:.5e}"))
+        .collect();
+    println!(
+        "optimum: {} (D = {:.4}, predicted {:.4} N)",
+        params.join(", "),
+        o.desirability,
+        o.predicted_n
+    );
+    println!(
+        "validation: pulled {:.5} N vs measured {} N: relative error {:.3} % (limit {} %)",
+        o.validated_n, cal.target_n, o.relative_error_pct, o.max_relative_error_pct
+    );
+    println!(
+        "{} pulls ({} simulated, {} replayed) in {wall:.2} s",
+        cal.runs, outcome.simulated, outcome.replayed
+    );
+    println!("report: {}", out.join(pull_off::MARKDOWN_FILE).display());
+    validation_verdict(
+        args,
+        o.passed,
+        o.relative_error_pct,
+        o.max_relative_error_pct,
+    )
 }

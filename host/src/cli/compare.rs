@@ -11,15 +11,17 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 
+use crate::diagnose::model::Model;
 use crate::diagnose::plot::plot_experiment;
 use crate::diagnose::residuals::{lack_of_fit, Dataset};
 use crate::diagnose::sensitivity::predict;
-use crate::diagnose::study::Diagnosis;
+use crate::study::Study;
 
 /// Arguments of `arachis compare`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Diagnosis study file (TOML with a [diagnosis] section).
+    /// Study file with measurements at several conditions, replicated (e.g. a [diagnosis]
+    /// study).
     pub study: PathBuf,
     /// Directory for the SVG plots (created if missing); no plots without it.
     #[arg(long)]
@@ -28,20 +30,21 @@ pub struct Args {
 
 /// Runs `arachis compare`.
 pub fn run(args: Args) -> Result<()> {
-    let study = Diagnosis::load(&args.study)?;
+    let study = Study::load(&args.study)?;
     let data = Dataset::new(&study)?;
-    let pred = predict(&data, &study.calibration)?;
-    print!("{}", report(&study, &data, &pred)?);
+    let model = Model::new(&study, &data.experiments)?;
+    let pred = predict(&data, &model, &study.current_values())?;
+    print!("{}", report(&data, &pred)?);
     if let Some(dir) = &args.plots {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-        for (ei, e) in study.experiment.iter().enumerate() {
-            let path = dir.join(format!("compare-{}-{}.svg", ei + 1, e.kind.name()));
+        for (ei, e) in data.experiments.iter().enumerate() {
+            let path = dir.join(format!("compare-{}-{}.svg", ei + 1, e.rig));
             plot_experiment(
                 &data,
                 ei,
                 &pred,
                 None,
-                &format!("{}: measured vs simulated", e.kind.name()),
+                &format!("{}: measured vs simulated", e.rig),
                 &path,
             )?;
             println!("wrote {}", path.display());
@@ -51,19 +54,23 @@ pub fn run(args: Args) -> Result<()> {
 }
 
 /// The comparison table and lack-of-fit lines.
-pub fn report(study: &Diagnosis, data: &Dataset, pred: &[f64]) -> Result<String> {
+pub fn report(data: &Dataset, pred: &[f64]) -> Result<String> {
     use std::fmt::Write;
     let mut s = String::new();
     let r = data.standardised(pred);
     let lof = lack_of_fit(data, pred)?;
-    for (ei, e) in study.experiment.iter().enumerate() {
+    for (ei, e) in data.experiments.iter().enumerate() {
+        let axis = if e.condition.1.is_empty() {
+            "(one condition)"
+        } else {
+            e.condition.1.as_str()
+        };
         writeln!(
             s,
-            "experiment {} {}: {} vs {}",
+            "experiment {} {}: {} vs {axis}",
             ei + 1,
-            e.kind.name(),
-            e.kind.observable_label(),
-            e.kind.condition_label()
+            e.rig,
+            e.observable_label
         )?;
         writeln!(
             s,
@@ -75,10 +82,14 @@ pub fn report(study: &Diagnosis, data: &Dataset, pred: &[f64]) -> Result<String>
             .enumerate()
             .filter(|(_, o)| o.experiment == ei)
         {
+            let at = if o.x.is_nan() {
+                "-".to_owned()
+            } else {
+                format!("{:.6}", o.x)
+            };
             writeln!(
                 s,
-                "  {:<12.6} {:>3}   {:<14.6} {:<12.3e} {:<15.6} {:+8.2}{}",
-                o.condition,
+                "  {at:<12} {:>3}   {:<14.6} {:<12.3e} {:<15.6} {:+8.2}{}",
                 o.values.len(),
                 o.mean,
                 o.se_mean,

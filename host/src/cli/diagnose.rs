@@ -11,11 +11,12 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 
+use crate::diagnose::model::Model;
 use crate::diagnose::residuals::{lack_of_fit, Dataset};
 use crate::diagnose::score::{rank, Status, FAMILY_ALPHA, IDENTIFIABLE_FRACTION};
 use crate::diagnose::sensitivity::Linearisation;
 use crate::diagnose::separate::propose;
-use crate::diagnose::study::Diagnosis;
+use crate::study::Study;
 
 /// Replicates assumed for a proposed extra measurement.
 const PROPOSAL_REPLICATES: usize = 4;
@@ -23,7 +24,8 @@ const PROPOSAL_REPLICATES: usize = 4;
 /// Arguments of `arachis diagnose`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Diagnosis study file.
+    /// Study file with replicated measurements at several conditions (e.g. a [diagnosis]
+    /// study).
     pub study: PathBuf,
     /// Skip the search for the measurement that separates the top two effects.
     #[arg(long)]
@@ -33,9 +35,11 @@ pub struct Args {
 /// Runs `arachis diagnose`.
 pub fn run(args: Args) -> Result<()> {
     use std::fmt::Write;
-    let study = Diagnosis::load(&args.study)?;
+    let study = Study::load(&args.study)?;
     let data = Dataset::new(&study)?;
-    let lin = Linearisation::new(&data, &study.calibration)?;
+    let model = Model::new(&study, &data.experiments)?;
+    let current = study.current_values();
+    let lin = Linearisation::new(&data, &model, &current)?;
     let lof = lack_of_fit(&data, &lin.predictions)?;
     let mut s = String::new();
     writeln!(s, "lack of fit at the current calibration:")?;
@@ -43,10 +47,7 @@ pub fn run(args: Args) -> Result<()> {
         writeln!(
             s,
             "  {:<8} sum r^2 {:>8.2} over {} conditions, p = {:.3e}",
-            study.experiment[l.experiment].kind.name(),
-            l.chi2,
-            l.conditions,
-            l.p_value
+            data.experiments[l.experiment].rig, l.chi2, l.conditions, l.p_value
         )?;
     }
     let r = rank(&data, &lin)?;
@@ -123,25 +124,13 @@ pub fn run(args: Args) -> Result<()> {
         && tested.len() >= 2
         && (r.any_claimed() || !r.indistinguishable.is_empty())
     {
-        let sd = |kind| {
-            study
-                .experiment
-                .iter()
-                .position(|e| e.kind == kind)
-                .map(|ei| data.pure_error[ei].sd)
-                .or_else(|| {
-                    study
-                        .experiment
-                        .iter()
-                        .find(|e| e.kind == kind)
-                        .and_then(|e| e.noise_sd)
-                })
-        };
+        let sd = |ei: usize| data.pure_error.get(ei).map(|p| p.sd);
         let (a, b) = (tested[0], tested[1]);
         if let Some(p) = propose(
             &data,
+            &model,
             &lin,
-            &study.calibration,
+            &current,
             (a.effect, a.estimate),
             (b.effect, b.estimate),
             sd,
@@ -152,8 +141,8 @@ pub fn run(args: Args) -> Result<()> {
                  separation {:.2} -> {:.2} standard errors",
                 a.effect.name,
                 b.effect.name,
-                p.kind.name(),
-                p.kind.condition_label(),
+                data.experiments[p.experiment].rig,
+                data.experiments[p.experiment].condition.1,
                 p.condition,
                 PROPOSAL_REPLICATES,
                 p.separation_now,

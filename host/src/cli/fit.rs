@@ -9,15 +9,17 @@
 
 use std::path::PathBuf;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 
 use crate::diagnose::fit::compare_with;
-use crate::diagnose::params::{effect, CATALOGUE};
+use crate::diagnose::model::Model;
+use crate::diagnose::params::value;
 use crate::diagnose::plot::plot_experiment;
-use crate::diagnose::residuals::{lack_of_fit, Dataset};
+use crate::diagnose::residuals::{experiments, lack_of_fit, Dataset};
 use crate::diagnose::sensitivity::predict;
-use crate::diagnose::study::Diagnosis;
 use crate::io::atomic::write_string_atomic;
+use crate::rigs::single_sphere::ModelParams;
+use crate::study::Study;
 
 /// Significance level of the nested-model tests in the verdict.
 const NESTED_ALPHA: f64 = 0.05;
@@ -25,7 +27,8 @@ const NESTED_ALPHA: f64 = 0.05;
 /// Arguments of `arachis fit`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Diagnosis study file.
+    /// Study file with replicated measurements at several conditions (e.g. a [diagnosis]
+    /// study).
     pub study: PathBuf,
     /// The effect to switch on and fit (viscoelastic, cohesion, drag).
     #[arg(long = "with")]
@@ -33,7 +36,7 @@ pub struct Args {
     /// Skip the leave-one-condition-out refits (one refit per condition and model).
     #[arg(long)]
     pub no_loco: bool,
-    /// Write the study with the fitted calibration here.
+    /// Write the study with the fitted calibration here (a [diagnosis] study).
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Directory for SVG plots of measured vs before/after.
@@ -44,12 +47,14 @@ pub struct Args {
 /// Runs `arachis fit`.
 pub fn run(args: Args) -> Result<()> {
     use std::fmt::Write;
-    let eff = effect(&args.with)?;
-    let study = Diagnosis::load(&args.study)?;
+    let study = Study::load(&args.study)?;
+    let model = Model::new(&study, &experiments(&study))?;
+    let eff = model.catalogue.effect(&args.with)?;
     let data = Dataset::new(&study)?;
-    let c = compare_with(&data, &study.calibration, eff, !args.no_loco)?;
+    let current = study.current_values();
+    let c = compare_with(&data, &model, &current, eff, !args.no_loco)?;
     let mut s = String::new();
-    let before = predict(&data, &study.calibration)?;
+    let before = predict(&data, &model, &current)?;
     let rows = [
         ("current calibration", &before, c.sse_current, None),
         (
@@ -70,13 +75,7 @@ pub fn run(args: Args) -> Result<()> {
         let lof = lack_of_fit(&data, pred)?;
         let per: Vec<String> = lof
             .iter()
-            .map(|l| {
-                format!(
-                    "{} {:.3}",
-                    study.experiment[l.experiment].kind.name(),
-                    l.rms / l.sd
-                )
-            })
+            .map(|l| format!("{} {:.3}", data.experiments[l.experiment].rig, l.rms / l.sd))
             .collect();
         writeln!(
             s,
@@ -96,7 +95,7 @@ pub fn run(args: Args) -> Result<()> {
                 s,
                 "  {:<16} {:.5e} ± {:.2e} {}",
                 p.name,
-                p.get(&f.params),
+                value(p, &f.params),
                 f.std_errors[k],
                 p.unit
             )?;
@@ -172,33 +171,36 @@ pub fn run(args: Args) -> Result<()> {
     print!("{s}");
     if let Some(dir) = &args.plots {
         std::fs::create_dir_all(dir)?;
-        for (ei, e) in study.experiment.iter().enumerate() {
-            let path = dir.join(format!("fit-{}-{}.svg", ei + 1, e.kind.name()));
+        for (ei, e) in data.experiments.iter().enumerate() {
+            let path = dir.join(format!("fit-{}-{}.svg", ei + 1, e.rig));
             plot_experiment(
                 &data,
                 ei,
                 &before,
                 Some((&format!("with {}", eff.name), &c.with.predictions)),
-                &format!(
-                    "{}: before (red) and after fitting {}",
-                    e.kind.name(),
-                    eff.name
-                ),
+                &format!("{}: before (red) and after fitting {}", e.rig, eff.name),
                 &path,
             )?;
             println!("wrote {}", path.display());
         }
     }
     if let Some(out) = &args.out {
-        let mut st = study.clone();
-        st.calibration = c.with.params;
-        write_string_atomic(out, &st.to_toml()?)?;
+        let mut section = study.file().diagnosis.clone().with_context(|| {
+            format!(
+                "--out writes a [diagnosis] study's calibration, and {} has no [diagnosis]",
+                args.study.display()
+            )
+        })?;
+        section.calibration = ModelParams::from_values(&c.with.params)?;
+        write_string_atomic(out, &section.to_toml()?)?;
         println!(
             "wrote {} (calibration: {})",
             out.display(),
-            CATALOGUE
+            model
+                .catalogue
+                .0
                 .iter()
-                .map(|p| format!("{} {:.5e}", p.name, p.get(&st.calibration)))
+                .map(|p| format!("{} {:.5e}", p.name, value(p, &c.with.params)))
                 .collect::<Vec<_>>()
                 .join(", ")
         );

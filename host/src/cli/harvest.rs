@@ -29,9 +29,6 @@ use crate::plant::{generate, Topology};
 use crate::stats::relative_error_percent;
 use crate::vtk::write_series;
 
-/// The shipped small plant (used when no `--topology` is given).
-pub(crate) const SHIPPED_TOPOLOGY: &str =
-    include_str!("../../../testdata/peanut-plant/topology-small.toml");
 /// Steps between VTK frames by default with `--vtk`.
 const DEFAULT_FRAME_EVERY: u64 = 2000;
 /// Significance level of the t-test (seed 001 §3.3: t < t0.05).
@@ -130,7 +127,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let text = match &args.topology {
         Some(p) => std::fs::read_to_string(p)
             .with_context(|| format!("cannot read the topology {}", p.display()))?,
-        None => SHIPPED_TOPOLOGY.to_owned(),
+        None => crate::plant::SHIPPED_TOPOLOGY.to_owned(),
     };
     let topology = Topology::from_toml(&text).context("bad plant topology")?;
     let model = generate(&topology).context("cannot generate the plant")?;

@@ -4,7 +4,6 @@
 //! status 2, so bad input is always a clear message and never a panic.
 
 pub mod calibrate;
-pub mod calibrate_plant;
 pub mod compare;
 pub mod diagnose;
 pub mod doe;
@@ -55,9 +54,10 @@ pub enum Command {
     /// Run one virtual bench experiment of a study (repose, plate_drop, incline_slide,
     /// rolling, compression).
     Simulate(simulate::Args),
-    /// Calibrate a study end to end: screen, steepest ascent, Box–Behnken, optimise, validate.
+    /// Calibrate any study end to end: screen, steepest ascent, response surface, optimise,
+    /// validate.
     Calibrate(calibrate::Args),
-    /// Calibrate the pod–stalk junction bond on the tensile test (seed 001's plan).
+    /// Alias (this release only) of `calibrate` on seed 001's built-in pull-off study.
     PlantCalibrate(plant_calibrate::Args),
     /// Generate a plant from its topology and print its parts and bond-set counts.
     Plant(plant::Args),

@@ -22,7 +22,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let text = match &args.topology {
         Some(p) => std::fs::read_to_string(p)
             .with_context(|| format!("cannot read the topology {}", p.display()))?,
-        None => super::harvest::SHIPPED_TOPOLOGY.to_owned(),
+        None => crate::plant::SHIPPED_TOPOLOGY.to_owned(),
     };
     let topology = Topology::from_toml(&text).context("bad plant topology")?;
     let model = generate(&topology).context("cannot generate the plant")?;

@@ -26,7 +26,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use crate::io::write_atomic;
-use crate::plant_calibration::PullOffArenas;
+use crate::rigs::pull_off::PullOffArenas;
 use crate::vtk::{write_series, ParticleFrame};
 
 /// Steps between VTK frames by default with `--vtk` (the default run breaks after about

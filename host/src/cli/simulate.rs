@@ -6,11 +6,11 @@
 //!     [--vtk DIR] [--picture pile.svg|pile.png] [--json]
 //! ```
 //!
-//! Experiments: `repose`, `plate_drop`, `incline_slide`, `rolling`, `compression`
-//! ([`crate::experiments`]). `--set KEY=VALUE` overrides a registry parameter (SI, e.g.
+//! Experiments: the pod rigs `repose`, `plate_drop`, `incline_slide`, `rolling`,
+//! `compression` (`crate::rigs`). `--set KEY=VALUE` overrides a registry parameter (SI, e.g.
 //! `pod.shear_modulus_pa=3.04e6`); parameters not set take the study's held values. The
 //! study and every `--set` are checked before anything is simulated. Prints the observable
-//! (with `--json`: the whole [`crate::experiments::Observation`] plus the run's spec hash
+//! (with `--json`: the whole [`crate::rigs::pod_world::Observation`] plus the run's spec hash
 //! and its CPU time, one JSON object).
 
 use std::path::PathBuf;
@@ -18,11 +18,11 @@ use std::path::PathBuf;
 use anyhow::{bail, Context};
 use serde::Serialize;
 
-use crate::experiments::picture::write_pile_picture;
-use crate::experiments::{
-    parse_assignment, parse_experiment, run_experiment, ExperimentKind, ModeName, Observation,
-    ObservationDetails, ParameterValues, RunOptions,
+use crate::rigs::pod_world::{
+    check_values, parse_assignment, parse_experiment, Experiment, ModeName, Observation,
+    ObservationDetails, ParameterValues, PodWorld, RunOptions,
 };
+use crate::rigs::repose_picture::write_pile_picture;
 use crate::study::Study;
 
 /// Arguments of `arachis simulate`.
@@ -71,14 +71,16 @@ struct Printed<'a> {
 }
 
 /// Checks everything that can be checked before simulating.
-pub fn prepare(
-    args: &Args,
-) -> anyhow::Result<(Study, ExperimentKind, ParameterValues, ModeName, u64)> {
+pub fn prepare(args: &Args) -> anyhow::Result<(Study, Experiment, ParameterValues, ModeName)> {
     let experiment = parse_experiment(&args.experiment)?;
     let study = Study::load(&args.study)?;
-    let mode: ModeName = match &args.mode {
-        Some(m) => m.parse()?,
-        None => study.file().plan.mode.parse()?,
+    let world = pod_world(&study, args)?;
+    let mode: ModeName = match (
+        &args.mode,
+        study.file().plan.as_ref().and_then(|p| p.mode.as_ref()),
+    ) {
+        (Some(m), _) | (None, Some(m)) => m.parse()?,
+        (None, None) => ModeName::Quick,
     };
     let mut values = ParameterValues::new();
     for text in &args.set {
@@ -87,7 +89,7 @@ pub fn prepare(
             bail!("--set {key} is given twice");
         }
     }
-    crate::experiments::check_values(&study, &values).context("--set")?;
+    check_values(&world, &values).context("--set")?;
     if let Some(p) = &args.picture {
         let ext = p
             .extension()
@@ -99,27 +101,31 @@ pub fn prepare(
                 p.display()
             );
         }
-        if experiment != ExperimentKind::Repose {
+        if experiment != Experiment::Repose {
             bail!("--picture is drawn for the repose experiment only");
         }
     }
-    let seed = args
-        .seed
-        .unwrap_or(study.file().plan.simulation.random_seed);
-    Ok((study, experiment, values, mode, seed))
+    Ok((study, experiment, values, mode))
+}
+
+/// The study's pod world, or the error saying it has none.
+fn pod_world<'a>(study: &'a Study, args: &Args) -> anyhow::Result<PodWorld<'a>> {
+    study.pod_world().with_context(|| {
+        format!(
+            "{}: `simulate` runs the pod rigs, and the study has no pod world ([materials], \
+             [pods], [pairs], [plan.modes], [plan.simulation])",
+            args.study.display()
+        )
+    })
 }
 
 /// Runs `arachis simulate`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let (study, experiment, values, mode, seed) = prepare(&args)?;
-    let condition = study
-        .file()
-        .measurements
-        .iter()
-        .find(|m| m.experiment == experiment)
-        .map(|m| m.condition.clone())
-        .unwrap_or_default();
-    let spec_hash = study
+    let (study, experiment, values, mode) = prepare(&args)?;
+    let world = pod_world(&study, &args)?;
+    let seed = args.seed.unwrap_or(world.simulation.random_seed);
+    let condition = study.condition_of(experiment.name());
+    let spec_hash = world
         .run_spec(experiment, &condition, &values, mode.as_str())
         .map_err(anyhow::Error::msg)?
         .spec_hash();
@@ -128,13 +134,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         templates: None,
     };
     let cpu_start = thread_cpu_seconds();
-    let observation = run_experiment(&study, experiment, &values, mode, seed, &options)?;
+    let observation = study.run_experiment(experiment, &values, mode, seed, &options)?;
     let cpu_seconds = thread_cpu_seconds()
         .zip(cpu_start)
         .map(|(end, start)| end - start);
     if let (Some(path), ObservationDetails::Repose(details)) = (&args.picture, &observation.details)
     {
-        let title = format!("{} ({} mode, seed {seed})", study.file().study.name, mode);
+        let title = format!("{} ({} mode, seed {seed})", study.name(), mode);
         write_pile_picture(path, details, &title)?;
     }
     if args.json {

@@ -1,6 +1,6 @@
-//! `arachis study check STUDY.toml [--json]`: parse and validate a study file before any
-//! simulation runs, reporting every problem with its file, key and line:column. A plant
-//! pull-off study (`[study] kind = "pull_off"`) is checked by `crate::plant_study`.
+//! `arachis study check STUDY.toml [--json]`: parse and validate a study file (a pod, a
+//! pull-off or a diagnosis study: one format) before any simulation runs, reporting every
+//! problem with its file, key and line:column.
 
 use std::path::PathBuf;
 
@@ -33,15 +33,6 @@ pub enum StudyCommand {
 /// Runs `arachis study`.
 pub fn run(args: Args) -> anyhow::Result<()> {
     match args.command {
-        StudyCommand::Check { study, json } if crate::plant_study::is_plant_study(&study) => {
-            let study = crate::plant_study::PlantStudy::load(&study)?;
-            if json {
-                println!("{}", serde_json::to_string(study.file())?);
-            } else {
-                println!("{}", study.summary());
-            }
-            Ok(())
-        }
         StudyCommand::Check { study, json } => {
             let study = Study::load(&study)?;
             if json {

@@ -13,11 +13,11 @@ use std::path::PathBuf;
 
 use anyhow::{anyhow, Context, Result};
 
-use crate::diagnose::experiment::ExperimentKind;
-use crate::diagnose::params::effect;
-use crate::diagnose::study::Diagnosis;
+use crate::diagnose::model::Model;
+use crate::diagnose::residuals::experiments;
 use crate::diagnose::synth::{add_noise, truths, NoiseSpec};
 use crate::io::atomic::write_string_atomic;
+use crate::study::Study;
 
 /// Replicates per point when a template point gives none.
 const DEFAULT_REPLICATES: usize = 4;
@@ -30,7 +30,7 @@ pub struct Args {
     /// Hidden effect, EFFECT=VALUE (repeatable; none = the calibrated model itself).
     #[arg(long)]
     pub hidden: Vec<String>,
-    /// Noise SD: SIGMA for all experiments or KIND=SIGMA (repeatable).
+    /// Noise SD: SIGMA for all experiments or RIG=SIGMA (repeatable).
     #[arg(long, allow_hyphen_values = true)]
     pub noise: Vec<String>,
     /// Seed of the noise stream.
@@ -49,35 +49,49 @@ fn number(s: &str, what: &str) -> Result<f64> {
 
 /// Runs `arachis synth`.
 pub fn run(args: Args) -> Result<()> {
-    let study = Diagnosis::load_template(&args.study)?;
+    let study = Study::load(&args.study)?;
+    let series = study.series();
+    let model = Model::new(&study, &experiments(&study))?;
     let mut hidden = Vec::new();
     for h in &args.hidden {
         let (name, value) = h
             .split_once('=')
             .ok_or_else(|| anyhow!("--hidden '{h}': expected EFFECT=VALUE"))?;
-        hidden.push((effect(name.trim())?, number(value, "--hidden")?));
+        hidden.push((
+            model.catalogue.effect(name.trim())?,
+            number(value, "--hidden")?,
+        ));
     }
     let mut noise = NoiseSpec::default();
     for n in &args.noise {
         match n.split_once('=') {
             None => noise.all = Some(number(n, "--noise")?),
-            Some((kind, v)) => {
-                let k = ExperimentKind::ALL
-                    .into_iter()
-                    .find(|k| k.name() == kind.trim())
-                    .ok_or_else(|| anyhow!("--noise '{n}': unknown experiment kind '{kind}' (rebound, press, fall, unload)"))?;
-                noise.per_kind.push((k, number(v, "--noise")?));
+            Some((rig, v)) => {
+                let rig = rig.trim();
+                if !series.iter().any(|s| s.experiment == rig) {
+                    let known: Vec<&str> = series.iter().map(|s| s.experiment.as_str()).collect();
+                    anyhow::bail!(
+                        "--noise '{n}': the study measures no '{rig}' (it measures {})",
+                        known.join(", ")
+                    );
+                }
+                noise.per_rig.push((rig.to_owned(), number(v, "--noise")?));
             }
         }
     }
-    let (_, truth) = truths(&study, &hidden).context("simulating the truth")?;
-    let out = add_noise(&study, &truth, &noise, args.seed, DEFAULT_REPLICATES)?;
-    out.check(true)?;
+    let (_, truth) = truths(&model, &series, &study.current_values(), &hidden)
+        .context("simulating the truth")?;
+    let values = add_noise(&series, &truth, &noise, args.seed, DEFAULT_REPLICATES)?;
     let text = format!(
         "# Synthetic measurements written by `arachis synth` (seed {}); the hidden effect is not recorded here.\n{}",
         args.seed,
-        out.to_toml()?
+        study
+            .toml_with_replicates(&values)
+            .map_err(|e| anyhow!("{}: {e}", args.study.display()))?
     );
+    // What is written must load as a measured study.
+    let written = Study::from_toml(&text, &args.out)?;
+    crate::diagnose::residuals::Dataset::new(&written)?;
     write_string_atomic(&args.out, &text)?;
     println!("wrote {}", args.out.display());
     Ok(())

@@ -17,10 +17,12 @@ use argmin::solver::gaussnewton::GaussNewton;
 use nalgebra::{DMatrix, DVector};
 use statrs::distribution::{ChiSquared, ContinuousCDF, FisherSnedecor};
 
-use super::params::{ModelParams, ParamInfo, Role};
+use super::model::Model;
+use super::params::{set, value, ParamInfo, Role};
 use super::residuals::Dataset;
 use super::score::scale_rows;
 use super::sensitivity::{jacobian, predict};
+use crate::calibration::ParameterValues;
 
 /// Gauss–Newton iteration limit.
 pub const MAX_ITERATIONS: u64 = 15;
@@ -35,20 +37,21 @@ pub const MIN_BASE_INFLUENCE: f64 = 1.0;
 /// The weighted least-squares problem handed to argmin.
 struct Problem<'a> {
     data: &'a Dataset,
-    start: ModelParams,
+    model: &'a Model<'a>,
+    start: ParameterValues,
     free: Vec<&'static ParamInfo>,
     weights: DVector<f64>,
 }
 
 impl Problem<'_> {
-    fn params(&self, u: &DVector<f64>) -> ModelParams {
-        let mut p = self.start;
+    fn params(&self, u: &DVector<f64>) -> ParameterValues {
+        let mut p = self.start.clone();
         for (k, info) in self.free.iter().enumerate() {
             let mut v = u[k] * info.scale;
             if info.role == Role::Effect {
                 v = v.max(0.0);
             }
-            info.set(&mut p, v);
+            set(info, &mut p, v);
         }
         p
     }
@@ -59,8 +62,7 @@ impl Operator for Problem<'_> {
     type Output = DVector<f64>;
     fn apply(&self, u: &Self::Param) -> Result<Self::Output, argmin::core::Error> {
         let p = self.params(u);
-        p.validate()?;
-        let pred = predict(self.data, &p)?;
+        let pred = predict(self.data, self.model, &p)?;
         Ok(DVector::from_iterator(
             pred.len(),
             pred.iter()
@@ -84,8 +86,8 @@ impl Jacobian for Problem<'_> {
     type Jacobian = DMatrix<f64>;
     fn jacobian(&self, u: &Self::Param) -> Result<Self::Jacobian, argmin::core::Error> {
         let p = self.params(u);
-        let at = predict(self.data, &p)?;
-        let j = jacobian(self.data, &p, &at, &self.free)?;
+        let at = predict(self.data, self.model, &p)?;
+        let j = jacobian(self.data, self.model, &p, &at, &self.free)?;
         let mut j = scale_rows(&j, &self.weights);
         for (k, info) in self.free.iter().enumerate() {
             j.column_mut(k).scale_mut(info.scale);
@@ -98,7 +100,7 @@ impl Jacobian for Problem<'_> {
 #[derive(Clone, Debug)]
 pub struct FitResult {
     /// Fitted parameters (the others as in the start).
-    pub params: ModelParams,
+    pub params: ParameterValues,
     /// The free parameters.
     pub free: Vec<&'static ParamInfo>,
     /// Standard errors of the free parameters (their units).
@@ -137,10 +139,18 @@ impl FitResult {
 }
 
 /// Base parameters that the data can determine at `p`.
-pub fn determinable_base(data: &Dataset, p: &ModelParams) -> Result<Vec<&'static ParamInfo>> {
-    let base: Vec<&'static ParamInfo> = super::params::base().collect();
-    let at = predict(data, p)?;
-    let j = jacobian(data, p, &at, &base)?;
+pub fn determinable_base(
+    data: &Dataset,
+    model: &Model<'_>,
+    p: &ParameterValues,
+) -> Result<Vec<&'static ParamInfo>> {
+    let base: Vec<&'static ParamInfo> = model
+        .catalogue
+        .base()
+        .filter(|i| p.contains_key(i.key))
+        .collect();
+    let at = predict(data, model, p)?;
+    let j = jacobian(data, model, p, &at, &base)?;
     let w = DVector::from_iterator(data.obs.len(), data.obs.iter().map(|o| 1.0 / o.se_mean));
     let j = scale_rows(&j, &w);
     Ok(base
@@ -152,12 +162,17 @@ pub fn determinable_base(data: &Dataset, p: &ModelParams) -> Result<Vec<&'static
 }
 
 /// Fit the parameters `free` from `start` (which also holds the fixed ones).
-pub fn fit(data: &Dataset, start: &ModelParams, free: &[&'static ParamInfo]) -> Result<FitResult> {
+pub fn fit(
+    data: &Dataset,
+    model: &Model<'_>,
+    start: &ParameterValues,
+    free: &[&'static ParamInfo],
+) -> Result<FitResult> {
     if free.is_empty() {
-        let predictions = predict(data, start)?;
+        let predictions = predict(data, model, start)?;
         let sse = data.standardised(&predictions).iter().map(|r| r * r).sum();
         return Ok(FitResult {
-            params: *start,
+            params: start.clone(),
             free: Vec::new(),
             std_errors: Vec::new(),
             predictions,
@@ -174,11 +189,12 @@ pub fn fit(data: &Dataset, start: &ModelParams, free: &[&'static ParamInfo]) -> 
     }
     let problem = Problem {
         data,
-        start: *start,
+        model,
+        start: start.clone(),
         free: free.to_vec(),
         weights: DVector::from_iterator(data.obs.len(), data.obs.iter().map(|o| 1.0 / o.se_mean)),
     };
-    let u0 = DVector::from_iterator(free.len(), free.iter().map(|i| i.get(start) / i.scale));
+    let u0 = DVector::from_iterator(free.len(), free.iter().map(|i| value(i, start) / i.scale));
     let solver = GaussNewton::new().with_tolerance(COST_TOLERANCE)?;
     let res = Executor::new(problem, solver)
         .configure(|s| s.param(u0).max_iters(MAX_ITERATIONS))
@@ -193,7 +209,7 @@ pub fn fit(data: &Dataset, start: &ModelParams, free: &[&'static ParamInfo]) -> 
         .ok_or_else(|| anyhow!("Gauss-Newton returned no parameters"))?;
     let problem = res.problem.problem.as_ref().context("problem lost")?;
     let params = problem.params(&u);
-    let predictions = predict(data, &params)?;
+    let predictions = predict(data, model, &params)?;
     let sse = data.standardised(&predictions).iter().map(|r| r * r).sum();
     let j = problem.jacobian(&u)?;
     let cov = (j.transpose() * &j).try_inverse().ok_or_else(|| {
@@ -240,22 +256,27 @@ pub struct Comparison {
 /// Fit with and without `effect`; `loco` adds the leave-one-condition-out error.
 pub fn compare_with(
     data: &Dataset,
-    current: &ModelParams,
+    model: &Model<'_>,
+    current: &ParameterValues,
     effect: &'static ParamInfo,
     loco: bool,
 ) -> Result<Comparison> {
     let n = data.obs.len();
-    let pred = predict(data, current)?;
+    let pred = predict(data, model, current)?;
     let sse_current = data.standardised(&pred).iter().map(|r| r * r).sum();
-    let base = determinable_base(data, current)?;
-    let without = fit(data, current, &base)?;
-    let mut start = without.params;
+    let base = determinable_base(data, model, current)?;
+    let without = fit(data, model, current, &base)?;
+    let mut start = without.params.clone();
     // Start the effect at one finite-difference step: at exactly 0 the forward difference is
     // the right sensitivity, but Gauss–Newton needs room to move both ways.
-    effect.set(&mut start, effect.get(current).max(effect.fd_step));
+    set(
+        effect,
+        &mut start,
+        value(effect, current).max(effect.fd_step),
+    );
     let mut free = base.clone();
     free.push(effect);
-    let with = fit(data, &start, &free)?;
+    let with = fit(data, model, &start, &free)?;
     let lr = (without.sse - with.sse).max(0.0);
     let lr_p = 1.0 - ChiSquared::new(1.0)?.cdf(lr);
     let dfr = n as f64 - with.k() as f64;
@@ -266,8 +287,8 @@ pub fn compare_with(
         (f64::NAN, f64::NAN)
     };
     let loco = if loco {
-        let a = loco_rms(data, &without.params, &without.free)?;
-        let b = loco_rms(data, &with.params, &with.free)?;
+        let a = loco_rms(data, model, &without.params, &without.free)?;
+        let b = loco_rms(data, model, &with.params, &with.free)?;
         Some((a, b))
     } else {
         None
@@ -287,14 +308,19 @@ pub fn compare_with(
 
 /// Leave-one-condition-out: refit without each condition (from `start`) and predict it;
 /// RMS of the standardised prediction errors.
-pub fn loco_rms(data: &Dataset, start: &ModelParams, free: &[&'static ParamInfo]) -> Result<f64> {
+pub fn loco_rms(
+    data: &Dataset,
+    model: &Model<'_>,
+    start: &ParameterValues,
+    free: &[&'static ParamInfo],
+) -> Result<f64> {
     let mut ss = 0.0;
     for i in 0..data.obs.len() {
         let d = data.without(i);
-        let fitted = fit(&d, start, free)
+        let fitted = fit(&d, model, start, free)
             .with_context(|| format!("leave-one-out fit without condition {}", i + 1))?;
         let o = &data.obs[i];
-        let y = o.kind.simulate(o.condition, &fitted.params)?;
+        let y = model.simulate(o.experiment, &o.condition, &fitted.params)?;
         ss += ((o.mean - y) / o.se_mean).powi(2);
     }
     Ok((ss / data.obs.len() as f64).sqrt())

@@ -3,20 +3,20 @@
 //! that could explain the misfit, fit the chosen one, and make synthetic data with a hidden
 //! effect to test all of it.
 //!
-//! One module per concept: [`params`] (base parameters and the effect catalogue),
-//! [`experiment`] (the cheap core simulations), [`study`] (the study file),
-//! [`residuals`] (standardised residuals and lack of fit), [`sensitivity`] (finite-difference
+//! It takes any study and the same rigs a calibration runs: a study's measurements at
+//! several conditions are the data, its rigs the model. One module per concept:
+//! [`params`] (the base parameters and effects the rigs declare), [`model`] (the rigs of a
+//! study's experiments), [`residuals`] (standardised residuals and lack of fit), [`sensitivity`] (finite-difference
 //! sensitivities), [`score`] (the ranking score test), [`fit`] (recalibration with an effect),
 //! [`synth`] (synthetic measurements), [`plot`] (SVG plots), [`separate`] (which measurement
 //! would tell two effects apart).
 
-pub mod experiment;
 pub mod fit;
+pub mod model;
 pub mod params;
 pub mod plot;
 pub mod residuals;
 pub mod score;
 pub mod sensitivity;
 pub mod separate;
-pub mod study;
 pub mod synth;

@@ -31,12 +31,12 @@ pub fn plot_experiment(
     let Some(&first) = idx.first() else {
         return Err(anyhow!("experiment {} has no conditions", ei + 1));
     };
-    let kind = data.obs[first].kind;
+    let experiment = &data.experiments[data.obs[first].experiment];
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
     for &i in &idx {
         let o = &data.obs[i];
-        x0 = x0.min(o.condition);
-        x1 = x1.max(o.condition);
+        x0 = x0.min(o.x);
+        x1 = x1.max(o.x);
         let mut ys: Vec<f64> = o.values.clone();
         ys.push(pred[i]);
         ys.push(o.mean - 2.0 * o.se_mean);
@@ -64,13 +64,13 @@ pub fn plot_experiment(
             .map_err(|x| e(&x))?;
         chart
             .configure_mesh()
-            .x_desc(kind.condition_label())
-            .y_desc(kind.observable_label())
+            .x_desc(experiment.condition.1.as_str())
+            .y_desc(experiment.observable_label.as_str())
             .draw()
             .map_err(|x| e(&x))?;
         let reps = idx.iter().flat_map(|&i| {
             let o = &data.obs[i];
-            o.values.iter().map(move |v| (o.condition, *v))
+            o.values.iter().map(move |v| (o.x, *v))
         });
         chart
             .draw_series(reps.map(|p| Circle::new(p, 2, BLUE.mix(0.4).filled())))
@@ -82,8 +82,8 @@ pub fn plot_experiment(
                 let o = &data.obs[i];
                 PathElement::new(
                     vec![
-                        (o.condition, o.mean - 2.0 * o.se_mean),
-                        (o.condition, o.mean + 2.0 * o.se_mean),
+                        (o.x, o.mean - 2.0 * o.se_mean),
+                        (o.x, o.mean + 2.0 * o.se_mean),
                     ],
                     BLUE.stroke_width(2),
                 )
@@ -91,9 +91,8 @@ pub fn plot_experiment(
             .map_err(|x| e(&x))?
             .label("mean ± 2 SE")
             .legend(|(x, y)| PathElement::new(vec![(x, y - 5), (x, y + 5)], BLUE));
-        let line = |p: &[f64]| -> Vec<(f64, f64)> {
-            idx.iter().map(|&i| (data.obs[i].condition, p[i])).collect()
-        };
+        let line =
+            |p: &[f64]| -> Vec<(f64, f64)> { idx.iter().map(|&i| (data.obs[i].x, p[i])).collect() };
         chart
             .draw_series(LineSeries::new(line(pred), RED.stroke_width(2)))
             .map_err(|x| e(&x))?

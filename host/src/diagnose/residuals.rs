@@ -7,27 +7,42 @@
 //! given, not fitted to these data), which is the lack-of-fit test reported; χ²_k would ignore
 //! that s is estimated and claim misfit too often with few replicates.
 
-use anyhow::Result;
+use anyhow::{bail, Result};
 use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 
-use super::experiment::ExperimentKind;
-use super::study::Diagnosis;
+use crate::calibration::Condition;
+use crate::study::Study;
 
 /// One condition of one experiment, reduced.
 #[derive(Clone, Debug)]
 pub struct Obs {
     /// Experiment index in the study.
     pub experiment: usize,
-    /// Experiment kind.
-    pub kind: ExperimentKind,
-    /// Condition.
-    pub condition: f64,
+    /// The condition.
+    pub condition: Condition,
+    /// The condition's value on the experiment's axis (its first key).
+    pub x: f64,
     /// Replicates.
     pub values: Vec<f64>,
     /// Mean of the replicates.
     pub mean: f64,
     /// Standard error of the mean, s/√n, with s the experiment's pure-error SD.
     pub se_mean: f64,
+}
+
+/// One experiment: a rig's quantity measured at several conditions.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Experiment {
+    /// The rig.
+    pub rig: String,
+    /// The quantity.
+    pub quantity: String,
+    /// The quantity, with its unit, for tables and plots.
+    pub observable_label: String,
+    /// The condition axis: its key and its label with the unit.
+    pub condition: (String, String),
+    /// The study's noise SD for synthesising it, if any.
+    pub noise_sd: Option<f64>,
 }
 
 /// Pure error of one experiment.
@@ -42,6 +57,8 @@ pub struct PureError {
 /// The reduced data set, conditions of all experiments stacked in study order.
 #[derive(Clone, Debug)]
 pub struct Dataset {
+    /// The experiments.
+    pub experiments: Vec<Experiment>,
     /// The conditions.
     pub obs: Vec<Obs>,
     /// Pure error per experiment.
@@ -52,39 +69,92 @@ pub struct Dataset {
 /// every digit would make the standardised residuals infinite.
 const MIN_RELATIVE_SD: f64 = 1e-12;
 
+/// The experiments of `study`: its series, with their rigs' labels.
+pub fn experiments(study: &Study) -> Vec<Experiment> {
+    study
+        .series()
+        .into_iter()
+        .map(|s| {
+            let kind = crate::rigs::catalogue::find(&s.experiment);
+            let label = kind
+                .and_then(|k| k.quantity(&s.quantity))
+                .map_or(format!("{}, {}", s.quantity, s.unit), |q| {
+                    q.label.to_owned()
+                });
+            let key = s
+                .points
+                .first()
+                .and_then(|p| p.condition.keys().next().cloned())
+                .unwrap_or_default();
+            let axis = kind
+                .and_then(|k| k.condition(&key))
+                .map_or(key.clone(), |c| c.label.to_owned());
+            Experiment {
+                rig: s.experiment,
+                quantity: s.quantity,
+                observable_label: label,
+                condition: (key, axis),
+                noise_sd: s.noise_sd,
+            }
+        })
+        .collect()
+}
+
 impl Dataset {
-    /// Reduce a checked study with measurements.
-    pub fn new(d: &Diagnosis) -> Result<Self> {
+    /// Reduces the measurements of `study`. Every point needs replicate values, and each
+    /// experiment ≥ 1 degree of freedom of pure error (some point with ≥ 2 replicates).
+    pub fn new(study: &Study) -> Result<Self> {
+        let experiments = experiments(study);
         let mut obs = Vec::new();
         let mut pure_error = Vec::new();
-        for (ei, e) in d.experiment.iter().enumerate() {
+        for (ei, (e, s)) in experiments.iter().zip(study.series()).enumerate() {
+            let what = format!("experiment {} ({})", ei + 1, e.rig);
             let mut ss = 0.0;
             let mut df = 0usize;
             let mut scale = 0.0f64;
-            for p in &e.point {
+            for (pi, p) in s.points.iter().enumerate() {
+                if p.values.is_empty() {
+                    bail!(
+                        "in {}: {what} point {}: no values (the diagnosis needs the replicates \
+                         as measured)",
+                        study.path().display(),
+                        pi + 1
+                    );
+                }
                 let n = p.values.len() as f64;
                 let m = p.values.iter().sum::<f64>() / n;
                 ss += p.values.iter().map(|v| (v - m).powi(2)).sum::<f64>();
                 df += p.values.len() - 1;
                 scale = scale.max(m.abs());
             }
+            if df == 0 {
+                bail!(
+                    "in {}: {what}: no replicates, so the measurement uncertainty (pure error) \
+                     is unknown; measure some condition at least twice",
+                    study.path().display()
+                );
+            }
             let sd = (ss / df as f64)
                 .sqrt()
                 .max(MIN_RELATIVE_SD * scale.max(1.0));
             pure_error.push(PureError { sd, df });
-            for p in &e.point {
+            for p in &s.points {
                 let n = p.values.len() as f64;
                 obs.push(Obs {
                     experiment: ei,
-                    kind: e.kind,
-                    condition: p.condition,
+                    x: p.condition.get(&e.condition.0).copied().unwrap_or(f64::NAN),
+                    condition: p.condition.clone(),
                     values: p.values.clone(),
                     mean: p.values.iter().sum::<f64>() / n,
                     se_mean: sd / n.sqrt(),
                 });
             }
         }
-        Ok(Dataset { obs, pure_error })
+        Ok(Dataset {
+            experiments,
+            obs,
+            pure_error,
+        })
     }
 
     /// Standardised residuals (ȳ − ŷ)/(s/√n) for predictions `pred` (one per condition).
@@ -168,43 +238,20 @@ pub fn lack_of_fit(data: &Dataset, pred: &[f64]) -> Result<Vec<LackOfFit>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnose::params::ModelParams;
-    use crate::diagnose::study::{Experiment, Point};
 
     #[test]
     fn pure_error_is_pooled_and_residuals_standardised() {
         // Points (1, 3) and (2, 4, 6): SS = 2 + 8 = 10 on 1 + 2 df, s = √(10/3).
-        let d = Diagnosis {
-            name: String::new(),
-            calibration: ModelParams {
-                restitution: 0.5,
-                youngs_modulus_pa: 8.43e6,
-                viscoelastic_time_s: 0.0,
-                cohesion_j_m3: 0.0,
-                drag_coefficient: 0.0,
-                plastic_fraction: 0.0,
-            },
-            experiment: vec![Experiment {
-                kind: ExperimentKind::Fall,
-                noise_sd: None,
-                point: vec![
-                    Point {
-                        condition: 0.5,
-                        values: vec![1.0, 3.0],
-                        replicates: None,
-                    },
-                    Point {
-                        condition: 1.0,
-                        values: vec![2.0, 4.0, 6.0],
-                        replicates: None,
-                    },
-                ],
-            }],
-        };
-        let data = Dataset::new(&d).unwrap();
+        let text = "[diagnosis]\n[diagnosis.calibration]\nrestitution = 0.5\n\
+                    youngs_modulus_pa = 8.43e6\n[[diagnosis.experiment]]\nkind = \"fall\"\n\
+                    [[diagnosis.experiment.point]]\ncondition = 0.5\nvalues = [1.0, 3.0]\n\
+                    [[diagnosis.experiment.point]]\ncondition = 1.0\nvalues = [2.0, 4.0, 6.0]\n";
+        let study = Study::from_toml(text, std::path::Path::new("t.toml")).unwrap();
+        let data = Dataset::new(&study).unwrap();
         let s = (10.0f64 / 3.0).sqrt();
         assert!((data.pure_error[0].sd - s).abs() < 1e-12);
         assert_eq!(data.pure_error[0].df, 3);
+        assert_eq!(data.experiments[0].condition.1, "fall height, m");
         let r = data.standardised(&[0.0, 4.0]);
         assert!((r[0] - 2.0 / (s / 2f64.sqrt())).abs() < 1e-12);
         assert_eq!(r[1], 0.0);

@@ -209,8 +209,7 @@ pub fn column_basis(a: &DMatrix<f64>) -> DMatrix<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnose::experiment::ExperimentKind;
-    use crate::diagnose::params::{base, effect};
+    use crate::diagnose::params::Catalogue;
     use crate::diagnose::residuals::{Obs, PureError};
 
     /// Three conditions with SE 1, measured means `m`, predictions 0.
@@ -218,24 +217,27 @@ mod tests {
         let obs = (0..3)
             .map(|i| Obs {
                 experiment: 0,
-                kind: ExperimentKind::Rebound,
-                condition: 0.1 * (i + 1) as f64,
+                condition: Default::default(),
+                x: 0.1 * (i + 1) as f64,
                 values: vec![m[i]],
                 mean: m[i],
                 se_mean: 1.0,
             })
             .collect();
         let data = Dataset {
+            experiments: Vec::new(),
             obs,
             pure_error: vec![PureError { sd: 1.0, df: 10 }],
         };
-        let e = base().next().unwrap();
+        let catalogue = Catalogue::of_rigs(["rebound"]);
+        let effect = |name| catalogue.effect(name).unwrap();
+        let e = catalogue.base().next().unwrap();
         let lin = Linearisation {
             predictions: vec![0.0; 3],
             calibrated: vec![e],
             // The calibrated parameter shifts every condition alike: it absorbs the mean.
             calibrated_jacobian: DMatrix::from_element(3, 1, 1.0),
-            candidates: vec![effect("viscoelastic").unwrap(), effect("drag").unwrap()],
+            candidates: vec![effect("viscoelastic"), effect("drag")],
             candidate_jacobian: DMatrix::from_fn(3, 2, |i, j| [s_visco, s_drag][j][i]),
         };
         (data, lin)

@@ -8,14 +8,16 @@ use anyhow::Result;
 use nalgebra::DMatrix;
 use rayon::prelude::*;
 
-use super::params::{ModelParams, ParamInfo};
+use super::model::Model;
+use super::params::{set, value, ParamInfo, Role};
 use super::residuals::Dataset;
+use crate::calibration::ParameterValues;
 
 /// Predictions at every condition of `data` with parameters `p`.
-pub fn predict(data: &Dataset, p: &ModelParams) -> Result<Vec<f64>> {
+pub fn predict(data: &Dataset, model: &Model<'_>, p: &ParameterValues) -> Result<Vec<f64>> {
     data.obs
         .par_iter()
-        .map(|o| o.kind.simulate(o.condition, p))
+        .map(|o| model.simulate(o.experiment, &o.condition, p))
         .collect()
 }
 
@@ -23,7 +25,8 @@ pub fn predict(data: &Dataset, p: &ModelParams) -> Result<Vec<f64>> {
 /// the predictions `at` at `p`. Returns an N × len(params) matrix.
 pub fn jacobian(
     data: &Dataset,
-    p: &ModelParams,
+    model: &Model<'_>,
+    p: &ParameterValues,
     at: &[f64],
     params: &[&ParamInfo],
 ) -> Result<DMatrix<f64>> {
@@ -36,15 +39,15 @@ pub fn jacobian(
         .map(|&(j, i)| -> Result<f64> {
             let info = params[j];
             let h = info.fd_step;
-            let v = info.get(p);
+            let v = value(info, p);
             let o = &data.obs[i];
-            let mut up = *p;
-            info.set(&mut up, v + h);
-            let y_up = o.kind.simulate(o.condition, &up)?;
-            if v - h >= 0.0 || info.role == super::params::Role::Base {
-                let mut dn = *p;
-                info.set(&mut dn, v - h);
-                let y_dn = o.kind.simulate(o.condition, &dn)?;
+            let mut up = p.clone();
+            set(info, &mut up, v + h);
+            let y_up = model.simulate(o.experiment, &o.condition, &up)?;
+            if v - h >= 0.0 || info.role == Role::Base {
+                let mut dn = p.clone();
+                set(info, &mut dn, v - h);
+                let y_dn = model.simulate(o.experiment, &o.condition, &dn)?;
                 Ok((y_up - y_dn) / (2.0 * h))
             } else {
                 Ok((y_up - at[i]) / h)
@@ -70,18 +73,27 @@ pub struct Linearisation {
 }
 
 impl Linearisation {
-    /// Predictions and sensitivities at the calibration `p`.
-    pub fn new(data: &Dataset, p: &ModelParams) -> Result<Self> {
-        let predictions = predict(data, p)?;
-        let calibrated: Vec<&'static ParamInfo> = super::params::CATALOGUE
+    /// Predictions and sensitivities at the calibration `p`: the base parameters `p` sets
+    /// and the effects already on are calibrated, the effects off are candidates.
+    pub fn new(data: &Dataset, model: &Model<'_>, p: &ParameterValues) -> Result<Self> {
+        let predictions = predict(data, model, p)?;
+        let calibrated: Vec<&'static ParamInfo> = model
+            .catalogue
+            .0
             .iter()
-            .filter(|i| i.role == super::params::Role::Base || i.get(p) > 0.0)
+            .copied()
+            .filter(|i| match i.role {
+                Role::Base => p.contains_key(i.key),
+                Role::Effect => value(i, p) > 0.0,
+            })
             .collect();
-        let candidates: Vec<&'static ParamInfo> = super::params::effects()
-            .filter(|i| i.get(p) == 0.0)
+        let candidates: Vec<&'static ParamInfo> = model
+            .catalogue
+            .effects()
+            .filter(|i| value(i, p) == 0.0)
             .collect();
-        let calibrated_jacobian = jacobian(data, p, &predictions, &calibrated)?;
-        let candidate_jacobian = jacobian(data, p, &predictions, &candidates)?;
+        let calibrated_jacobian = jacobian(data, model, p, &predictions, &calibrated)?;
+        let candidate_jacobian = jacobian(data, model, p, &predictions, &candidates)?;
         Ok(Linearisation {
             predictions,
             calibrated,

@@ -1,6 +1,6 @@
 //! Which experiment and condition would tell two candidate effects apart.
 //!
-//! For a proposed extra measurement at condition x of experiment kind K (with `replicates`
+//! For a proposed extra measurement at condition x of an experiment K (with `replicates`
 //! replicates and the experiment's noise SD), the augmented design has standardised
 //! sensitivities J̃ (calibrated parameters), s̃_a and s̃_b. The part of effect a's signature that
 //! neither the calibration nor effect b can mimic is ‖(I − P[J̃, s̃_b]) s̃_a‖; at the effect
@@ -12,29 +12,22 @@
 use anyhow::Result;
 use nalgebra::{DMatrix, DVector};
 
-use super::experiment::ExperimentKind;
-use super::params::{ModelParams, ParamInfo};
+use super::model::Model;
+use super::params::{set, value, ParamInfo};
 use super::residuals::Dataset;
 use super::score::column_basis;
 use super::sensitivity::Linearisation;
+use crate::calibration::{Condition, ParameterValues};
 
-/// Candidate conditions per experiment kind.
+/// Candidate conditions per experiment (log-spaced over its rig's search range, the
+/// practical conditions, narrower than what the simulation accepts).
 const GRID_POINTS: usize = 8;
-/// Practical condition ranges searched (narrower than what the simulation accepts).
-fn search_range(kind: ExperimentKind) -> (f64, f64) {
-    match kind {
-        ExperimentKind::Rebound => (0.02, 2.0),
-        ExperimentKind::Press => (1.0e-3, 0.2),
-        ExperimentKind::Fall => (0.1, 3.0),
-        ExperimentKind::Unload => (1.0e-3, 0.2),
-    }
-}
 
 /// A proposed measurement.
 #[derive(Clone, Debug)]
 pub struct Proposal {
-    /// Experiment kind.
-    pub kind: ExperimentKind,
+    /// The experiment (index in the data) to measure again.
+    pub experiment: usize,
     /// Condition.
     pub condition: f64,
     /// Separation (standard errors) with the proposal added.
@@ -60,15 +53,16 @@ fn separation(
 }
 
 /// Best extra measurement to separate effects `a` and `b` (both candidates of `lin`).
-/// `noise_sd(kind)` gives the replicate SD for a kind, `None` to skip the kind.
+/// `noise_sd(experiment)` gives the replicate SD of an experiment, `None` to skip it.
 #[allow(clippy::too_many_arguments)]
 pub fn propose(
     data: &Dataset,
+    model: &Model<'_>,
     lin: &Linearisation,
-    p: &ModelParams,
+    p: &ParameterValues,
     a: (&'static ParamInfo, f64),
     b: (&'static ParamInfo, f64),
-    noise_sd: impl Fn(ExperimentKind) -> Option<f64>,
+    noise_sd: impl Fn(usize) -> Option<f64>,
     replicates: usize,
 ) -> Result<Option<Proposal>> {
     let n = data.obs.len();
@@ -92,22 +86,28 @@ pub fn propose(
     let theta_b = if b.1 > 0.0 { b.1 } else { b.0.fd_step };
     let now = separation(&jt, &sa, &sb, theta_a, theta_b);
     let mut best: Option<Proposal> = None;
-    for kind in ExperimentKind::ALL {
-        let Some(sd) = noise_sd(kind) else { continue };
+    for (ei, e) in data.experiments.iter().enumerate() {
+        let search = crate::rigs::catalogue::find(&e.rig)
+            .and_then(|k| k.condition(&e.condition.0))
+            .and_then(|c| c.search);
+        let (Some((lo, hi)), Some(sd)) = (search, noise_sd(ei)) else {
+            continue;
+        };
         let wx = (replicates as f64).sqrt() / sd;
-        let (lo, hi) = search_range(kind);
         for g in 0..GRID_POINTS {
             let x = lo * (hi / lo).powf(g as f64 / (GRID_POINTS - 1) as f64);
-            let y0 = kind.simulate(x, p)?;
+            let at = Condition::from([(e.condition.0.clone(), x)]);
+            let simulate = |p: &ParameterValues| model.simulate(ei, &at, p);
+            let y0 = simulate(p)?;
             let d = |info: &ParamInfo, central: bool| -> Result<f64> {
-                let v = info.get(p);
-                let mut up = *p;
-                info.set(&mut up, v + info.fd_step);
-                let yu = kind.simulate(x, &up)?;
+                let v = value(info, p);
+                let mut up = p.clone();
+                set(info, &mut up, v + info.fd_step);
+                let yu = simulate(&up)?;
                 if central {
-                    let mut dn = *p;
-                    info.set(&mut dn, v - info.fd_step);
-                    Ok((yu - kind.simulate(x, &dn)?) / (2.0 * info.fd_step))
+                    let mut dn = p.clone();
+                    set(info, &mut dn, v - info.fd_step);
+                    Ok((yu - simulate(&dn)?) / (2.0 * info.fd_step))
                 } else {
                     Ok((yu - y0) / info.fd_step)
                 }
@@ -121,7 +121,7 @@ pub fn propose(
             let s = separation(&jx, &sax, &sbx, theta_a, theta_b);
             if best.as_ref().is_none_or(|bp| s > bp.separation_after) {
                 best = Some(Proposal {
-                    kind,
+                    experiment: ei,
                     condition: x,
                     separation_after: s,
                     separation_now: now,

@@ -9,85 +9,92 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 
-use super::experiment::ExperimentKind;
-use super::params::{ModelParams, ParamInfo};
-use super::study::Diagnosis;
+use super::model::Model;
+use super::params::{set, ParamInfo};
+use crate::calibration::ParameterValues;
+use crate::study::measurements::Series;
 
-/// Noise SD per experiment kind (observable units).
+/// Noise SD per rig (observable units).
 #[derive(Clone, Debug, Default)]
 pub struct NoiseSpec {
-    /// SD for every kind without its own entry.
+    /// SD for every rig without its own entry.
     pub all: Option<f64>,
-    /// Per-kind SDs.
-    pub per_kind: Vec<(ExperimentKind, f64)>,
+    /// Per-rig SDs.
+    pub per_rig: Vec<(String, f64)>,
 }
 
 impl NoiseSpec {
-    /// SD for `kind`, falling back to the experiment's `noise_sd`.
-    pub fn sd(&self, kind: ExperimentKind, study_sd: Option<f64>) -> Result<f64> {
+    /// SD for `rig`, falling back to the experiment's `noise_sd`.
+    pub fn sd(&self, rig: &str, study_sd: Option<f64>) -> Result<f64> {
         let sd = self
-            .per_kind
+            .per_rig
             .iter()
-            .find(|(k, _)| *k == kind)
+            .find(|(k, _)| k == rig)
             .map(|(_, s)| *s)
             .or(self.all)
             .or(study_sd);
         match sd {
             Some(s) if s.is_finite() && s > 0.0 => Ok(s),
-            Some(s) => bail!("noise SD for {} must be > 0, got {s}", kind.name()),
-            None => bail!(
-                "no noise SD for {}: give --noise {}=SIGMA or noise_sd in the study",
-                kind.name(),
-                kind.name()
-            ),
+            Some(s) => bail!("noise SD for {rig} must be > 0, got {s}"),
+            None => {
+                bail!("no noise SD for {rig}: give --noise {rig}=SIGMA or noise_sd in the study")
+            }
         }
     }
 }
 
-/// True observables (no noise) at every point of every experiment, with `hidden` effects.
-pub fn truths(d: &Diagnosis, hidden: &[(&ParamInfo, f64)]) -> Result<(ModelParams, Vec<Vec<f64>>)> {
-    let mut p = d.calibration;
+/// True observables (no noise) at every point of every series, with `current` values and
+/// the `hidden` effects on; returns the values used and the truths.
+pub fn truths(
+    model: &Model<'_>,
+    series: &[Series],
+    current: &ParameterValues,
+    hidden: &[(&ParamInfo, f64)],
+) -> Result<(ParameterValues, Vec<Vec<f64>>)> {
+    let mut p = current.clone();
     for (info, v) in hidden {
-        info.set(&mut p, *v);
+        set(info, &mut p, *v);
     }
-    p.validate()?;
     let mut out = Vec::new();
-    for e in &d.experiment {
-        let ys: Result<Vec<f64>> = e
-            .point
+    for (ei, s) in series.iter().enumerate() {
+        let ys: Result<Vec<f64>> = s
+            .points
             .iter()
-            .map(|pt| e.kind.simulate(pt.condition, &p))
+            .map(|pt| model.simulate(ei, &pt.condition, &p))
             .collect();
         out.push(ys?);
     }
     Ok((p, out))
 }
 
-/// The study with noisy replicates around `truth` (replicate count: the point's
-/// `replicates`, else its number of values, else `default_replicates`).
+/// Noisy replicates around `truth` for every point of `series` (replicate count: the
+/// point's `replicates`, else its number of values, else `default_replicates`).
 pub fn add_noise(
-    d: &Diagnosis,
+    series: &[Series],
     truth: &[Vec<f64>],
     noise: &NoiseSpec,
     seed: u64,
     default_replicates: usize,
-) -> Result<Diagnosis> {
+) -> Result<Vec<Vec<Vec<f64>>>> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut out = d.clone();
-    for (ei, e) in out.experiment.iter_mut().enumerate() {
-        let sd = noise.sd(e.kind, e.noise_sd)?;
+    let mut out = Vec::new();
+    for (ei, s) in series.iter().enumerate() {
+        let sd = noise.sd(&s.experiment, s.noise_sd)?;
         let normal = Normal::new(0.0, sd)?;
-        for (pi, pt) in e.point.iter_mut().enumerate() {
+        let mut points = Vec::new();
+        for (pi, pt) in s.points.iter().enumerate() {
             let n = pt.replicates.unwrap_or(if pt.values.is_empty() {
                 default_replicates
             } else {
                 pt.values.len()
             });
-            pt.values = (0..n)
-                .map(|_| truth[ei][pi] + normal.sample(&mut rng))
-                .collect();
-            pt.replicates = None;
+            points.push(
+                (0..n)
+                    .map(|_| truth[ei][pi] + normal.sample(&mut rng))
+                    .collect(),
+            );
         }
+        out.push(points);
     }
     Ok(out)
 }

@@ -24,3 +24,10 @@ pub use error::PlantError;
 pub use generate::{generate, PlantModel};
 pub use summary::PlantSummary;
 pub use topology::Topology;
+
+/// The shipped small plant, `testdata/peanut-plant/topology-small.toml` (built in, so the
+/// commands that default to it work from any folder).
+pub const SHIPPED_TOPOLOGY: &str =
+    include_str!("../../../testdata/peanut-plant/topology-small.toml");
+/// Its file name, as the shipped plant study names it.
+pub const SHIPPED_TOPOLOGY_FILE: &str = "topology-small.toml";

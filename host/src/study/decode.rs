@@ -3,9 +3,10 @@
 //! stopping at the first.
 //!
 //! serde stops at the first error inside whatever it decodes, so the loader hands it small
-//! pieces: each top-level section, each `[materials]`, `[pairs]` and `[parameters]` entry,
-//! each `[[measurements]]` block, and each `[plan]` sub-table. A file with three bad blocks
-//! gets three messages.
+//! pieces: each top-level section, each `[materials]`, `[pairs]`, `[parameters]` and
+//! `[factors]` entry, each `[[measurements]]` block, and each `[plan]` sub-table. A file
+//! with three bad blocks gets three messages. Which sections and plan keys a file must have
+//! depends on its kind ([`Layout`]): a pod study, a pull-off study, a diagnosis study.
 
 use std::collections::BTreeMap;
 
@@ -14,64 +15,75 @@ use toml::de::{DeTable, DeValue};
 use toml::Spanned;
 
 use super::error::StudyError;
-use super::file_format::{StudyFile, SECTIONS};
+use super::file_format::{StudyFile, POD_SECTIONS, PULL_OFF_SECTIONS, SECTIONS};
 use super::key_path::KeyPath;
-use super::nearest_name::nearest_name;
-use super::plan::Plan;
+use super::plan::{Plan, PLAN_KEYS};
 use super::source::Source;
+use crate::nearest_name::nearest_name;
 
-/// The keys of `[plan]`, in the order they are decoded.
-const PLAN_KEYS: [&str; 9] = [
-    "mode",
-    "screening",
-    "steepest_ascent",
-    "box_behnken",
-    "model",
-    "target",
-    "validation",
-    "modes",
-    "simulation",
-];
+/// Which sections `root` has, and so which kinds of study it is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Layout {
+    /// A pod world (`[materials]`, `[pods]` or `[pairs]`), also when nothing else marks the
+    /// file (a study of other rigs says what it measures in `[[measurements]]`).
+    pub pods: bool,
+    /// The pull-off tensile test (`[rig]`, `[measurement]` or `[factors]`).
+    pub pull_off: bool,
+    /// `[[measurements]]` (then a pull-off study needs no `[measurement]`).
+    pub measurements: bool,
+    /// `[diagnosis]`.
+    pub diagnosis: bool,
+}
+
+impl Layout {
+    fn of(root: &DeTable<'_>) -> Self {
+        let has = |keys: &[&str]| keys.iter().any(|k| root.get(*k).is_some());
+        let pull_off = has(&["rig", "measurement", "factors"]);
+        let diagnosis = has(&["diagnosis"]);
+        let measurements = has(&["measurements"]);
+        let pods = has(&["materials", "pods", "pairs"])
+            || !(pull_off || diagnosis || measurements || has(&["parameters"]));
+        Self {
+            pods,
+            pull_off,
+            measurements,
+            diagnosis,
+        }
+    }
+
+    /// Whether the file must have section `key`.
+    fn requires(&self, key: &str) -> bool {
+        (self.pods && POD_SECTIONS.contains(&key))
+            || (self.pull_off
+                && PULL_OFF_SECTIONS.contains(&key)
+                && !(key == "measurement" && self.measurements))
+    }
+}
 
 /// Decodes the whole file, or returns every structural error found.
 pub(crate) fn decode_file(src: &Source<'_>) -> Result<StudyFile, Vec<StudyError>> {
     let (root, mut errors) = root_sections(src, &SECTIONS);
-
-    let study = whole(src, root, "study", &mut errors);
-    let materials = map(src, root, "materials", &mut errors);
-    let pods = whole(src, root, "pods", &mut errors);
-    let pairs = map(src, root, "pairs", &mut errors);
-    let measurements = array(src, root, "measurements", &mut errors);
-    let parameters = map(src, root, "parameters", &mut errors);
-    let plan = plan(src, root, &mut errors);
-
-    match (
-        study,
-        materials,
-        pods,
-        pairs,
-        measurements,
-        parameters,
-        plan,
-    ) {
-        (
-            Some(study),
-            Some(materials),
-            Some(pods),
-            Some(pairs),
-            Some(measurements),
-            Some(parameters),
-            Some(plan),
-        ) if errors.is_empty() => Ok(StudyFile {
-            study,
-            materials,
-            pods,
-            pairs,
-            measurements,
-            parameters,
-            plan,
-        }),
-        _ => Err(errors),
+    let layout = Layout::of(root);
+    let need = |key: &str| layout.requires(key);
+    let file = StudyFile {
+        study: whole(src, root, "study", need("study"), &mut errors),
+        materials: map(src, root, "materials", need("materials"), &mut errors).unwrap_or_default(),
+        pods: whole(src, root, "pods", need("pods"), &mut errors),
+        pairs: map(src, root, "pairs", need("pairs"), &mut errors).unwrap_or_default(),
+        rig: whole(src, root, "rig", need("rig"), &mut errors),
+        measurements: array(src, root, "measurements", need("measurements"), &mut errors)
+            .unwrap_or_default(),
+        measurement: whole(src, root, "measurement", need("measurement"), &mut errors),
+        parameters: map(src, root, "parameters", need("parameters"), &mut errors)
+            .unwrap_or_default(),
+        factors: map(src, root, "factors", need("factors"), &mut errors).unwrap_or_default(),
+        plan: plan(src, root, layout, &mut errors),
+        diagnosis: whole(src, root, "diagnosis", false, &mut errors),
+    };
+    if errors.is_empty() {
+        Ok(file)
+    } else {
+        Err(errors)
     }
 }
 
@@ -121,16 +133,17 @@ pub(crate) fn root_sections<'a, 'i>(
     (root, errors)
 }
 
-/// The value at `key` of `table`, or an error saying it is missing.
+/// The value at `key` of `table`; when it is missing and `needed`, an error saying so.
 fn required<'a, 'i>(
     src: &Source<'i>,
     table: &'a DeTable<'i>,
     at: &KeyPath,
     key: &str,
+    needed: bool,
     errors: &mut Vec<StudyError>,
 ) -> Option<&'a Spanned<DeValue<'i>>> {
     let value = table.get(key);
-    if value.is_none() {
+    if value.is_none() && needed {
         let reason = if at.is_empty() {
             format!("missing section [{key}]")
         } else {
@@ -141,28 +154,31 @@ fn required<'a, 'i>(
     value
 }
 
-/// Decodes one top-level section as a whole.
-pub(crate) fn whole<T: DeserializeOwned>(
+/// Decodes one top-level section as a whole (`None` when it is absent; an error too when
+/// it is `needed`).
+fn whole<T: DeserializeOwned>(
     src: &Source<'_>,
     root: &DeTable<'_>,
     key: &str,
+    needed: bool,
     errors: &mut Vec<StudyError>,
 ) -> Option<T> {
-    let value = required(src, root, &KeyPath::root(), key, errors)?;
+    let value = required(src, root, &KeyPath::root(), key, needed, errors)?;
     src.decode(&KeyPath::root().key(key), value)
         .map_err(|e| errors.push(e))
         .ok()
 }
 
 /// Decodes a table of named entries, each separately.
-pub(crate) fn map<T: DeserializeOwned>(
+fn map<T: DeserializeOwned>(
     src: &Source<'_>,
     root: &DeTable<'_>,
     key: &str,
+    needed: bool,
     errors: &mut Vec<StudyError>,
 ) -> Option<BTreeMap<String, T>> {
     let at = KeyPath::root().key(key);
-    let value = required(src, root, &KeyPath::root(), key, errors)?;
+    let value = required(src, root, &KeyPath::root(), key, needed, errors)?;
     let Some(table) = value.get_ref().as_table() else {
         errors.push(src.error(
             &at,
@@ -194,10 +210,11 @@ fn array<T: DeserializeOwned>(
     src: &Source<'_>,
     root: &DeTable<'_>,
     key: &str,
+    needed: bool,
     errors: &mut Vec<StudyError>,
 ) -> Option<Vec<T>> {
     let at = KeyPath::root().key(key);
-    let value = required(src, root, &KeyPath::root(), key, errors)?;
+    let value = required(src, root, &KeyPath::root(), key, needed, errors)?;
     let Some(array) = value.get_ref().as_array() else {
         errors.push(src.error(
             &at,
@@ -222,10 +239,36 @@ fn array<T: DeserializeOwned>(
     ok.then_some(out)
 }
 
+/// The keys `[plan]` must have in a study of `layout` whose plan has `table`'s keys.
+fn plan_requires(layout: Layout, table: &DeTable<'_>, key: &str) -> bool {
+    let surface = table.get("box_behnken").is_some() || table.get("central_composite").is_some();
+    match key {
+        "screening" | "steepest_ascent" | "validation" => true,
+        "mode" | "modes" | "simulation" | "target" => layout.pods,
+        // The response surface: a Box–Behnken one (the seed 000 layout, with its model)
+        // unless the plan has the other.
+        "box_behnken" => !surface,
+        "model" => table.get("box_behnken").is_some() || !surface,
+        _ => false,
+    }
+}
+
 /// Decodes `[plan]` one sub-table at a time, then assembles it.
-fn plan(src: &Source<'_>, root: &DeTable<'_>, errors: &mut Vec<StudyError>) -> Option<Plan> {
+fn plan(
+    src: &Source<'_>,
+    root: &DeTable<'_>,
+    layout: Layout,
+    errors: &mut Vec<StudyError>,
+) -> Option<Plan> {
     let at = KeyPath::root().key("plan");
-    let value = required(src, root, &KeyPath::root(), "plan", errors)?;
+    let value = required(
+        src,
+        root,
+        &KeyPath::root(),
+        "plan",
+        layout.requires("plan"),
+        errors,
+    )?;
     let Some(table) = value.get_ref().as_table() else {
         errors.push(src.error(
             &at,
@@ -236,7 +279,8 @@ fn plan(src: &Source<'_>, root: &DeTable<'_>, errors: &mut Vec<StudyError>) -> O
     reject_unknown_keys(src, table, &at, &PLAN_KEYS, "key", errors);
     let before = errors.len();
     for key in PLAN_KEYS {
-        if let Some(v) = required(src, table, &at, key, errors) {
+        let needed = plan_requires(layout, table, key);
+        if let Some(v) = required(src, table, &at, key, needed, errors) {
             // Decode each part alone to collect its errors; the typed value is rebuilt below.
             let part = decode_plan_part(src, &at.key(key), key, v);
             if let Err(e) = part {
@@ -258,14 +302,17 @@ fn decode_plan_part(
     value: &Spanned<DeValue<'_>>,
 ) -> Result<(), StudyError> {
     use super::plan::{
-        BoxBehnken, Mode, Model, Screening, Simulation, SteepestAscent, Target, Validation,
+        BoxBehnken, CentralComposite, Mode, Model, Optimisation, Screening, Simulation,
+        SteepestAscent, Target, Validation,
     };
     match key {
         "mode" => src.decode::<String>(at, value).map(drop),
         "screening" => src.decode::<Screening>(at, value).map(drop),
         "steepest_ascent" => src.decode::<SteepestAscent>(at, value).map(drop),
         "box_behnken" => src.decode::<BoxBehnken>(at, value).map(drop),
+        "central_composite" => src.decode::<CentralComposite>(at, value).map(drop),
         "model" => src.decode::<Model>(at, value).map(drop),
+        "optimisation" => src.decode::<Optimisation>(at, value).map(drop),
         "target" => src.decode::<Target>(at, value).map(drop),
         "validation" => src.decode::<Validation>(at, value).map(drop),
         "modes" => src.decode::<BTreeMap<String, Mode>>(at, value).map(drop),

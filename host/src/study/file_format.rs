@@ -1,48 +1,93 @@
 //! The typed view of a study file: one struct per TOML table, every key unit-suffixed and in
-//! SI (or mm for pod geometry, as the seeds print it).
+//! SI (or mm for pod geometry, as the seeds print it). Every table denies unknown keys, so
+//! a misspelt key is an error rather than a silently ignored setting.
 //!
-//! Top level:
-//! - `[study]` ([`StudyHeader`]): name, description, citation of the source paper;
-//! - `[materials.<name>]` ([`Material`]): density, Poisson ratio, shear modulus;
-//! - `[pods]` ([`Pods`]): the particle material, size, shape mix, optional scanned STLs;
-//! - `[pairs."<a>-<b>"]` ([`Pair`]): contact properties of two materials;
-//! - `[[measurements]]` ([`Measurement`]): bench results with replicates;
-//! - `[parameters."<name>"]` ([`ParameterRange`]): what calibration varies;
-//! - `[plan]` ([`Plan`]): the calibration plan.
-//!
-//! Every table denies unknown keys, so a misspelt key is an error rather than a silently
-//! ignored setting.
+//! One format for every study: a header, what the rigs simulate, the measurements, what a
+//! calibration varies, and the plan. Which sections a study has depends on its rigs:
+//! - `[study]` ([`StudyHeader`]): name, description, citation of the source paper (a
+//!   `[diagnosis]` study names itself there instead);
+//! - pods ([`crate::rigs::pod_world`]): `[materials.<name>]` ([`Material`]), `[pods]`
+//!   ([`Pods`]), `[pairs."<a>-<b>"]` ([`Pair`]), with `[plan.modes]` and
+//!   `[plan.simulation]`;
+//! - the pull-off tensile test: `[rig]` ([`PullOffRigSection`]);
+//! - measurements: `[[measurements]]` ([`Measurement`]: bench results with replicates at a
+//!   condition), or the pull-off study's one `[measurement]` ([`MeasuredForce`]), or the
+//!   experiments of `[diagnosis]` ([`DiagnosisSection`]) measured at several conditions;
+//! - what varies: `[parameters."<name>"]` ([`ParameterRange`], by parameter name) or
+//!   `[factors.<label>]` ([`FactorLevels`], the pull-off rig's parameters by seed 001
+//!   Table 5 label);
+//! - `[plan]` ([`Plan`]): the calibration plan;
+//! - `[diagnosis.calibration]`: the current values of the single-sphere rigs' parameters.
 
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use super::diagnosis::DiagnosisSection;
 use super::measurements::Measurement;
-use super::parameters::ParameterRange;
 use super::plan::Plan;
+use super::pull_off::{FactorLevels, MeasuredForce, PullOffRigSection};
+pub use crate::rigs::pod_world::parameters::ParameterRange;
+pub use crate::rigs::pod_world::sections::{
+    Material, Pair, Pods, ShapeMix, StlPaths, PAIR_PROPERTIES,
+};
 
-/// The whole file.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// The whole file. Absent sections are left out when it is written back.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StudyFile {
     /// `[study]`.
-    pub study: StudyHeader,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub study: Option<StudyHeader>,
     /// `[materials.<name>]`, by name.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub materials: BTreeMap<String, Material>,
     /// `[pods]`.
-    pub pods: Pods,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pods: Option<Pods>,
     /// `[pairs."<a>-<b>"]`, by pair name.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub pairs: BTreeMap<String, Pair>,
+    /// `[rig]`: the pull-off tensile test.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rig: Option<PullOffRigSection>,
     /// `[[measurements]]`, in file order.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub measurements: Vec<Measurement>,
-    /// `[parameters."<name>"]`, by registry name.
+    /// `[measurement]`: a pull-off study's measured force.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub measurement: Option<MeasuredForce>,
+    /// `[parameters."<name>"]`, by parameter name.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub parameters: BTreeMap<String, ParameterRange>,
+    /// `[factors.<label>]`, by label.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub factors: BTreeMap<String, FactorLevels>,
     /// `[plan]`.
-    pub plan: Plan,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub plan: Option<Plan>,
+    /// `[diagnosis]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diagnosis: Option<DiagnosisSection>,
 }
 
 /// The top-level sections, in the order a study file is written.
-pub const SECTIONS: [&str; 7] = [
+pub const SECTIONS: [&str; 11] = [
+    "study",
+    "materials",
+    "pods",
+    "pairs",
+    "rig",
+    "measurements",
+    "measurement",
+    "parameters",
+    "factors",
+    "plan",
+    "diagnosis",
+];
+
+/// The sections a pod study must have.
+pub const POD_SECTIONS: [&str; 7] = [
     "study",
     "materials",
     "pods",
@@ -52,147 +97,22 @@ pub const SECTIONS: [&str; 7] = [
     "plan",
 ];
 
+/// The sections a pull-off study must have (`[measurement]` unless it has
+/// `[[measurements]]`; `[factors]` and `[plan]` to be calibrated).
+pub const PULL_OFF_SECTIONS: [&str; 3] = ["study", "rig", "measurement"];
+
 /// `[study]`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StudyHeader {
     /// Short name.
     pub name: String,
+    /// `"pull_off"` in seed 001's study, which predates this format; it is checked against
+    /// the study's rigs and otherwise not needed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kind: Option<String>,
     /// What the study is.
     pub description: String,
     /// The paper the numbers come from.
     pub citation: String,
-}
-
-/// `[materials.<name>]`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Material {
-    /// Density, kg/m³.
-    pub density_kg_m3: f64,
-    /// Poisson ratio ν, dimensionless.
-    pub poisson: f64,
-    /// Shear modulus G, Pa.
-    pub shear_modulus_pa: f64,
-    /// Where the numbers are printed.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub source: Option<String>,
-}
-
-impl Material {
-    /// Young's modulus E = 2G(1 + ν), Pa (seed 000 eq. (12) solved for E).
-    pub fn youngs_modulus_pa(&self) -> f64 {
-        2.0 * self.shear_modulus_pa * (1.0 + self.poisson)
-    }
-}
-
-/// `[pairs."<a>-<b>"]`. A property may be left out when `[parameters]` varies it; it then
-/// takes the range's centre wherever a fixed value is needed.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Pair {
-    /// Coefficient of restitution e, dimensionless.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub restitution: Option<f64>,
-    /// Coefficient of static friction μs, dimensionless.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub static_friction: Option<f64>,
-    /// Coefficient of rolling friction μr, dimensionless (CDT form, seed 000 eq. (7)).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub rolling_friction: Option<f64>,
-    /// Where the numbers are printed.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub source: Option<String>,
-}
-
-/// The contact properties of a pair, in file order.
-pub const PAIR_PROPERTIES: [&str; 3] = ["restitution", "static_friction", "rolling_friction"];
-
-impl Pair {
-    /// The value of property `name` (one of [`PAIR_PROPERTIES`]).
-    pub fn property(&self, name: &str) -> Option<f64> {
-        match name {
-            "restitution" => self.restitution,
-            "static_friction" => self.static_friction,
-            "rolling_friction" => self.rolling_friction,
-            _ => None,
-        }
-    }
-}
-
-/// `[pods]`: the particles of the study.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Pods {
-    /// The `[materials]` entry the pods are made of.
-    pub material: String,
-    /// Pod length L, mm.
-    pub length_mm: f64,
-    /// Pod width W, mm.
-    pub width_mm: f64,
-    /// Pod thickness H, mm.
-    pub thickness_mm: f64,
-    /// Fractions of each harvest-time shape (seed 000 §2.2.1); they sum to 1.
-    pub shape_mix: ShapeMix,
-    /// Scanned shapes, by shape, relative to the study file. A shape without one is
-    /// generated from L × W × H.
-    #[serde(default, skip_serializing_if = "StlPaths::is_empty")]
-    pub stl: StlPaths,
-}
-
-/// `[pods.shape_mix]`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ShapeMix {
-    /// Normal pods (two kernels with a waist).
-    pub normal: f64,
-    /// Cocoon pods.
-    pub cocoon: f64,
-    /// Single-grain ellipsoidal pods.
-    pub single_grain: f64,
-}
-
-impl ShapeMix {
-    /// (shape key, fraction), in file order.
-    pub fn entries(&self) -> [(&'static str, f64); 3] {
-        [
-            ("normal", self.normal),
-            ("cocoon", self.cocoon),
-            ("single_grain", self.single_grain),
-        ]
-    }
-}
-
-/// `[pods.stl]`: optional scanned STL file per shape.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct StlPaths {
-    /// Normal pod scan.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub normal: Option<String>,
-    /// Cocoon pod scan.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub cocoon: Option<String>,
-    /// Single-grain pod scan.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub single_grain: Option<String>,
-}
-
-impl StlPaths {
-    /// True when no shape has a scan.
-    pub fn is_empty(&self) -> bool {
-        self.entries().is_empty()
-    }
-
-    /// (shape key, path as written) for every shape that has a scan.
-    pub fn entries(&self) -> Vec<(&'static str, &str)> {
-        [
-            ("normal", &self.normal),
-            ("cocoon", &self.cocoon),
-            ("single_grain", &self.single_grain),
-        ]
-        .into_iter()
-        .filter_map(|(k, p)| p.as_deref().map(|p| (k, p)))
-        .collect()
-    }
 }

@@ -14,185 +14,25 @@
 //! ```
 //!
 //! When a paper prints only a summary, the block gives `mean` and `n` (and `sd` when
-//! printed) instead of `values`; exactly one of the two forms is allowed.
-//! [`QUANTITIES`] and [`CONDITIONS`] are the tables of accepted quantities and condition
-//! keys; later experiments and effects add rows.
+//! printed) instead of `values`; exactly one of the two forms is allowed. The experiment is
+//! a rig's name, and its quantities and condition keys are those the rig declares
+//! (`crate::rigs::catalogue`).
 
 use std::collections::BTreeMap;
-use std::fmt;
 
 use serde::{Deserialize, Serialize};
-
-use super::limits::Limits;
-
-/// The virtual (and bench) experiments a study can measure and simulate (issue 4 §2).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Experiment {
-    /// Stacking (repose) angle by cylinder lifting (seed 000 §2.7, §3.6.1).
-    Repose,
-    /// Drop onto the 45° plate (restitution rig, seed 000 §2.6.1).
-    PlateDrop,
-    /// Sliding on an inclined plane (static friction, seed 000 §2.6.2).
-    InclineSlide,
-    /// Rolling on an incline followed by a flat (rolling friction, seed 000 §2.6.3).
-    Rolling,
-    /// Compression between two plates (apparent modulus, seed 000 §2.5.3).
-    Compression,
-}
-
-impl Experiment {
-    /// Every experiment, in declaration order.
-    pub const ALL: [Experiment; 5] = [
-        Self::Repose,
-        Self::PlateDrop,
-        Self::InclineSlide,
-        Self::Rolling,
-        Self::Compression,
-    ];
-
-    /// The name used in study files.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Repose => "repose",
-            Self::PlateDrop => "plate_drop",
-            Self::InclineSlide => "incline_slide",
-            Self::Rolling => "rolling",
-            Self::Compression => "compression",
-        }
-    }
-}
-
-impl fmt::Display for Experiment {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-/// A quantity an experiment measures, with the one unit the file must state for it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct QuantitySpec {
-    /// The experiment.
-    pub experiment: Experiment,
-    /// The `quantity` key's value.
-    pub name: &'static str,
-    /// The `unit` key's required value.
-    pub unit: &'static str,
-}
-
-/// Every accepted (experiment, quantity, unit).
-pub const QUANTITIES: &[QuantitySpec] = &[
-    QuantitySpec {
-        experiment: Experiment::Repose,
-        name: "repose_angle",
-        unit: "deg",
-    },
-    QuantitySpec {
-        experiment: Experiment::PlateDrop,
-        name: "restitution",
-        unit: "-",
-    },
-    QuantitySpec {
-        experiment: Experiment::PlateDrop,
-        name: "rebound_distance",
-        unit: "mm",
-    },
-    QuantitySpec {
-        experiment: Experiment::InclineSlide,
-        name: "slide_angle",
-        unit: "deg",
-    },
-    QuantitySpec {
-        experiment: Experiment::InclineSlide,
-        name: "static_friction",
-        unit: "-",
-    },
-    QuantitySpec {
-        experiment: Experiment::Rolling,
-        name: "rolling_distance",
-        unit: "mm",
-    },
-    QuantitySpec {
-        experiment: Experiment::Rolling,
-        name: "rolling_friction",
-        unit: "-",
-    },
-    QuantitySpec {
-        experiment: Experiment::Compression,
-        name: "apparent_modulus",
-        unit: "Pa",
-    },
-    QuantitySpec {
-        experiment: Experiment::Compression,
-        name: "peak_force",
-        unit: "N",
-    },
-];
-
-/// A condition key: a setting of an experiment that a measurement may fix. The key carries
-/// its unit as a suffix. A measurement's condition overrides the same-named setting of the
-/// plan's simulation settings when that measurement is simulated.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct ConditionSpec {
-    /// The key, unit-suffixed.
-    pub key: &'static str,
-    /// Experiments it applies to; empty means every experiment.
-    pub experiments: &'static [Experiment],
-    /// Physical limits.
-    pub limits: Limits,
-}
-
-/// Every accepted condition key.
-pub const CONDITIONS: &[ConditionSpec] = &[
-    ConditionSpec {
-        key: "lift_speed_m_s",
-        experiments: &[Experiment::Repose],
-        limits: Limits::Positive,
-    },
-    ConditionSpec {
-        key: "drop_height_mm",
-        experiments: &[Experiment::PlateDrop],
-        limits: Limits::Positive,
-    },
-    ConditionSpec {
-        key: "plate_angle_deg",
-        experiments: &[Experiment::PlateDrop],
-        limits: Limits::Positive,
-    },
-    ConditionSpec {
-        key: "slope_deg",
-        experiments: &[Experiment::InclineSlide, Experiment::Rolling],
-        limits: Limits::Positive,
-    },
-    ConditionSpec {
-        key: "release_height_mm",
-        experiments: &[Experiment::Rolling],
-        limits: Limits::Positive,
-    },
-    ConditionSpec {
-        key: "loading_speed_mm_min",
-        experiments: &[Experiment::Compression],
-        limits: Limits::Positive,
-    },
-    // Water content, wet basis (seed 000 §2.1: 36.72 %); applies to every experiment.
-    ConditionSpec {
-        key: "moisture_pct",
-        experiments: &[],
-        limits: Limits::NonNegative,
-    },
-];
 
 /// One `[[measurements]]` block as written in the file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Measurement {
-    /// Which experiment.
-    pub experiment: Experiment,
-    /// What was measured (one of [`QUANTITIES`] for this experiment).
+    /// Which experiment: a rig's name.
+    pub experiment: String,
+    /// What was measured (a quantity of the experiment's rig).
     pub quantity: String,
-    /// Its unit, as [`QUANTITIES`] requires.
+    /// Its unit, as the rig states it.
     pub unit: String,
-    /// The conditions it was measured at (keys from [`CONDITIONS`]); empty when the study
+    /// The conditions it was measured at (the rig's condition keys); empty when the study
     /// has a single condition.
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub condition: BTreeMap<String, f64>,
@@ -239,7 +79,7 @@ impl Measurement {
     /// every key of `condition` with the same value.
     pub fn matches(
         &self,
-        experiment: Experiment,
+        experiment: &str,
         quantity: &str,
         condition: &BTreeMap<String, f64>,
     ) -> bool {
@@ -251,18 +91,134 @@ impl Measurement {
     }
 }
 
-/// The accepted quantity names of `experiment`.
-pub fn quantities_of(experiment: Experiment) -> Vec<&'static QuantitySpec> {
-    QUANTITIES
-        .iter()
-        .filter(|q| q.experiment == experiment)
-        .collect()
+/// Every measurement of `file`: its `[[measurements]]`, a pull-off study's `[measurement]`
+/// (a printed force, no replicates), and each point of `[diagnosis]` (its replicates at the
+/// rig's one condition; none in a template).
+pub fn study_measurements(file: &super::StudyFile) -> Vec<Measurement> {
+    let mut out = measurement_blocks(file);
+    out.extend(
+        study_series(file)
+            .into_iter()
+            .take(diagnosis_blocks(file))
+            .flat_map(|s| {
+                s.points.into_iter().map(move |p| Measurement {
+                    experiment: s.experiment.clone(),
+                    quantity: s.quantity.clone(),
+                    unit: s.unit.clone(),
+                    condition: p.condition,
+                    values: (!p.values.is_empty()).then_some(p.values),
+                    mean: None,
+                    sd: None,
+                    n: None,
+                    source: None,
+                })
+            }),
+    );
+    out
 }
 
-/// The condition keys accepted for `experiment`.
-pub fn conditions_of(experiment: Experiment) -> Vec<&'static ConditionSpec> {
-    CONDITIONS
-        .iter()
-        .filter(|c| c.experiments.is_empty() || c.experiments.contains(&experiment))
-        .collect()
+/// The `[[diagnosis.experiment]]` blocks of `file`.
+fn diagnosis_blocks(file: &super::StudyFile) -> usize {
+    file.diagnosis.as_ref().map_or(0, |d| d.experiment.len())
+}
+
+/// `file`'s `[[measurements]]` and a pull-off study's `[measurement]`.
+fn measurement_blocks(file: &super::StudyFile) -> Vec<Measurement> {
+    let mut out = file.measurements.clone();
+    if let Some(m) = &file.measurement {
+        out.push(Measurement {
+            experiment: crate::rigs::pull_off::NAME.to_owned(),
+            quantity: m.quantity.clone(),
+            unit: PULL_OFF_FORCE_UNIT.to_owned(),
+            condition: BTreeMap::new(),
+            values: None,
+            mean: Some(m.value_n),
+            sd: None,
+            n: None,
+            source: Some(m.source.clone()),
+        });
+    }
+    out
+}
+
+/// The unit of a pull-off study's measured force.
+const PULL_OFF_FORCE_UNIT: &str = "N";
+
+/// One measured point of a [`Series`]: a condition and its replicates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SeriesPoint {
+    /// The condition.
+    pub condition: BTreeMap<String, f64>,
+    /// The replicates (none for a printed mean, or a template's point).
+    pub values: Vec<f64>,
+    /// How many replicates a template asks for.
+    pub replicates: Option<usize>,
+}
+
+/// One quantity of one rig measured at several conditions: what the diagnosis loop tests
+/// for lack of fit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Series {
+    /// The rig.
+    pub experiment: String,
+    /// The quantity.
+    pub quantity: String,
+    /// Its unit.
+    pub unit: String,
+    /// The measurement noise SD to synthesise with, when the study gives one.
+    pub noise_sd: Option<f64>,
+    /// The points, in file order.
+    pub points: Vec<SeriesPoint>,
+}
+
+/// The series of `file`: each `[[diagnosis.experiment]]` block, then its `[[measurements]]`
+/// grouped by experiment and quantity (in order of first appearance), then a pull-off
+/// study's `[measurement]`.
+pub fn study_series(file: &super::StudyFile) -> Vec<Series> {
+    let mut out: Vec<Series> = Vec::new();
+    for e in file.diagnosis.iter().flat_map(|d| &d.experiment) {
+        let Some(rig) = crate::rigs::catalogue::find(&e.kind) else {
+            continue;
+        };
+        let (Some(q), Some(c)) = (rig.quantities.first(), rig.conditions.first()) else {
+            continue;
+        };
+        out.push(Series {
+            experiment: e.kind.clone(),
+            quantity: q.name.to_owned(),
+            unit: q.unit.to_owned(),
+            noise_sd: e.noise_sd,
+            points: e
+                .point
+                .iter()
+                .map(|p| SeriesPoint {
+                    condition: BTreeMap::from([(c.key.to_owned(), p.condition)]),
+                    values: p.values.clone(),
+                    replicates: p.replicates,
+                })
+                .collect(),
+        });
+    }
+    let first = out.len();
+    for m in measurement_blocks(file) {
+        let point = SeriesPoint {
+            values: m.values.clone().unwrap_or_default(),
+            condition: m.condition.clone(),
+            replicates: None,
+        };
+        match out[first..]
+            .iter_mut()
+            .find(|s| s.experiment == m.experiment && s.quantity == m.quantity)
+        {
+            Some(s) => s.points.push(point),
+            None => out.push(Series {
+                experiment: m.experiment,
+                quantity: m.quantity,
+                unit: m.unit,
+                noise_sd: None,
+                points: vec![point],
+            }),
+        }
+    }
+    out
 }

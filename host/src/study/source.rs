@@ -16,7 +16,7 @@ use toml::Spanned;
 
 use super::error::StudyError;
 use super::key_path::{KeyPath, Segment};
-use super::nearest_name::nearest_name;
+use crate::nearest_name::nearest_name;
 
 /// A parsed study file: its name for messages, its text, and its spanned document tree.
 pub(crate) struct Source<'i> {

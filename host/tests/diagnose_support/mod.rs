@@ -3,15 +3,18 @@
 //! and the noise varied per seed through the same `synth::add_noise` the CLI uses.
 #![allow(dead_code)]
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use arachis::diagnose::fit::compare_with;
-use arachis::diagnose::params::effect;
-use arachis::diagnose::residuals::Dataset;
+use arachis::diagnose::model::Model;
+use arachis::diagnose::params::{value as param_value, Catalogue};
+use arachis::diagnose::residuals::{experiments, Dataset};
 use arachis::diagnose::score::{rank, Ranking};
 use arachis::diagnose::sensitivity::Linearisation;
-use arachis::diagnose::study::Diagnosis;
 use arachis::diagnose::synth::{add_noise, truths, NoiseSpec};
+use arachis::rigs::single_sphere::ModelParams;
+use arachis::study::diagnosis::DiagnosisSection;
+use arachis::study::Study;
 
 /// Seeds per case (issue 5: at least 50).
 pub const SEEDS: u64 = 50;
@@ -20,41 +23,59 @@ pub fn template_path() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../testdata/diagnosis-tutorial/template.toml")
 }
 
-pub fn template() -> Diagnosis {
-    Diagnosis::load_template(&template_path()).unwrap()
+/// The tutorial template's `[diagnosis]` section (edited by the tests, then loaded again
+/// with [`study_of`]).
+pub fn template() -> DiagnosisSection {
+    Study::load(&template_path())
+        .unwrap()
+        .file()
+        .diagnosis
+        .clone()
+        .unwrap()
+}
+
+/// The study of `section`, loaded and checked like a file.
+pub fn study_of(section: &DiagnosisSection) -> Study {
+    Study::from_toml(&section.to_toml().unwrap(), Path::new("test-study.toml")).unwrap()
+}
+
+/// The effect named `name` of the single-sphere rigs.
+pub fn effect(name: &str) -> &'static arachis::diagnose::params::ParamInfo {
+    Catalogue::of_rigs(["rebound"]).effect(name).unwrap()
 }
 
 /// One hidden-effect case, simulated once.
 pub struct Case {
-    pub study: Diagnosis,
+    pub study: Study,
     pub truth: Vec<Vec<f64>>,
     pub lin: Linearisation,
     /// Largest |truth − truth without the effect| over all conditions, in noise SDs.
     pub effect_size_sigma: f64,
 }
 
-pub fn case_for(study: Diagnosis, hidden: Option<(&str, f64)>) -> Case {
-    let truth_base = study.calibration;
-    case_with_truth(study, truth_base, hidden)
+pub fn case_for(section: DiagnosisSection, hidden: Option<(&str, f64)>) -> Case {
+    let truth_base = section.calibration;
+    case_with_truth(section, truth_base, hidden)
 }
 
 /// Like [`case_for`], but the truth's base parameters are `truth_base` while the study keeps
 /// its (then wrong) calibration.
 pub fn case_with_truth(
-    study: Diagnosis,
-    truth_base: arachis::diagnose::params::ModelParams,
+    section: DiagnosisSection,
+    truth_base: ModelParams,
     hidden: Option<(&str, f64)>,
 ) -> Case {
-    let h: Vec<_> = hidden
-        .iter()
-        .map(|(n, v)| (effect(n).unwrap(), *v))
-        .collect();
-    let mut truth_study = study.clone();
-    truth_study.calibration = truth_base;
-    let (_, truth) = truths(&truth_study, &h).unwrap();
-    let (_, plain) = truths(&truth_study, &[]).unwrap();
+    let h: Vec<_> = hidden.iter().map(|(n, v)| (effect(n), *v)).collect();
+    let study = study_of(&section);
+    let (truth, plain) = {
+        let series = study.series();
+        let model = Model::new(&study, &experiments(&study)).unwrap();
+        let (_, truth) = truths(&model, &series, &truth_base.values(), &h).unwrap();
+        let (_, plain) = truths(&model, &series, &truth_base.values(), &[]).unwrap();
+        (truth, plain)
+    };
     let mut size = 0.0f64;
-    for (ei, e) in study.experiment.iter().enumerate() {
+    for (ei, e) in section.experiment.iter().enumerate() {
         let sd = e.noise_sd.unwrap();
         for (a, b) in truth[ei].iter().zip(&plain[ei]) {
             size = size.max((a - b).abs() / sd);
@@ -62,8 +83,12 @@ pub fn case_with_truth(
     }
     // The linearisation depends only on the calibration and the conditions: any noisy copy
     // of the study gives the same one.
-    let noisy = add_noise(&study, &truth, &NoiseSpec::default(), 0, 4).unwrap();
-    let lin = Linearisation::new(&Dataset::new(&noisy).unwrap(), &study.calibration).unwrap();
+    let lin = {
+        let noisy = noisy_study(&study, &truth, 0);
+        let data = Dataset::new(&noisy).unwrap();
+        let model = Model::new(&noisy, &data.experiments).unwrap();
+        Linearisation::new(&data, &model, &study.current_values()).unwrap()
+    };
     Case {
         study,
         truth,
@@ -72,15 +97,29 @@ pub fn case_with_truth(
     }
 }
 
+/// `study` with replicates drawn around `truth` with noise seed `seed` (4 per point unless
+/// the study says).
+fn noisy_study(study: &Study, truth: &[Vec<f64>], seed: u64) -> Study {
+    let values = add_noise(&study.series(), truth, &NoiseSpec::default(), seed, 4).unwrap();
+    Study::from_toml(
+        &study.toml_with_replicates(&values).unwrap(),
+        Path::new("noisy-study.toml"),
+    )
+    .unwrap()
+}
+
 pub fn case(hidden: Option<(&str, f64)>) -> Case {
     case_for(template(), hidden)
 }
 
 impl Case {
+    /// The measured study of seed `seed`.
+    pub fn measured(&self, seed: u64) -> Study {
+        noisy_study(&self.study, &self.truth, seed)
+    }
     /// The measurements of seed `seed`.
     pub fn data(&self, seed: u64) -> Dataset {
-        let noisy = add_noise(&self.study, &self.truth, &NoiseSpec::default(), seed, 4).unwrap();
-        Dataset::new(&noisy).unwrap()
+        Dataset::new(&self.measured(seed)).unwrap()
     }
     /// The ranking for seed `seed`.
     pub fn ranking(&self, seed: u64) -> Ranking {
@@ -92,19 +131,21 @@ impl Case {
 pub const REPLICATES: usize = 12;
 
 pub fn fit_case(kind: &str, name: &str, value: f64, seeds: u64) {
-    let mut study = template();
-    study.experiment.retain(|e| e.kind.name() == kind);
-    for p in study.experiment[0].point.iter_mut() {
+    let mut section = template();
+    section.experiment.retain(|e| e.kind == kind);
+    for p in section.experiment[0].point.iter_mut() {
         p.replicates = Some(REPLICATES);
     }
-    let sd = study.experiment[0].noise_sd.unwrap();
-    let c = case_for(study, Some((name, value)));
-    let info = effect(name).unwrap();
+    let sd = section.experiment[0].noise_sd.unwrap();
+    let c = case_for(section, Some((name, value)));
+    let info = effect(name);
     let (mut in_band, mut covered) = (0, 0);
     let (mut sum_ratio, mut sum_est) = (0.0, 0.0);
     for seed in 0..seeds {
-        let data = c.data(seed);
-        let cmp = compare_with(&data, &c.study.calibration, info, false).unwrap();
+        let measured = c.measured(seed);
+        let data = Dataset::new(&measured).unwrap();
+        let model = Model::new(&measured, &data.experiments).unwrap();
+        let cmp = compare_with(&data, &model, &c.study.current_values(), info, false).unwrap();
         let f = &cmp.with;
         let (mut ss, mut n) = (0.0, 0);
         for (o, y) in data.obs.iter().zip(&f.predictions) {
@@ -115,7 +156,7 @@ pub fn fit_case(kind: &str, name: &str, value: f64, seeds: u64) {
         }
         let ratio = (ss / n as f64).sqrt() / sd;
         let k = f.free.iter().position(|p| p.name == name).unwrap();
-        let (est, se) = (info.get(&f.params), f.std_errors[k]);
+        let (est, se) = (param_value(info, &f.params), f.std_errors[k]);
         if (0.8..=1.3).contains(&ratio) {
             in_band += 1;
         }

@@ -1,13 +1,16 @@
-//! Checks of `[[measurements]]` blocks and of the plan's references to them.
+//! Checks of `[[measurements]]` blocks against the rig catalogue, and of the plan's
+//! references to the study's measurements.
 
 use std::collections::BTreeMap;
 
 use super::Validator;
+use crate::limits::Limits;
+use crate::nearest_name::nearest_name;
+use crate::rigs::catalogue;
+use crate::rigs::kind::{RigKind, WorldKind};
 use crate::study::file_format::StudyFile;
 use crate::study::key_path::KeyPath;
-use crate::study::limits::Limits;
-use crate::study::measurements::{conditions_of, quantities_of, Experiment, Measurement};
-use crate::study::nearest_name::nearest_name;
+use crate::study::measurements::Measurement;
 
 impl Validator<'_, '_> {
     pub(super) fn measurements(&mut self, file: &StudyFile) {
@@ -15,8 +18,10 @@ impl Validator<'_, '_> {
         let mut seen: BTreeMap<String, usize> = BTreeMap::new();
         for (i, m) in file.measurements.iter().enumerate() {
             let k = at.index(i);
-            self.quantity(&k, m.experiment, &m.quantity, Some(&m.unit));
-            self.condition(&k.key("condition"), m.experiment, &m.condition);
+            if let Some(rig) = self.rig(file, &k, &m.experiment) {
+                self.quantity(&k, rig, &m.quantity, Some(&m.unit));
+                self.condition(&k.key("condition"), rig, &m.condition);
+            }
             self.replicates(&k, m);
             let identity = format!("{} {} {:?}", m.experiment, m.quantity, m.condition);
             if let Some(first) = seen.insert(identity, i) {
@@ -31,14 +36,51 @@ impl Validator<'_, '_> {
         }
     }
 
+    /// The catalogue's rig named `experiment`, when it exists and the study describes what
+    /// it simulates; else the error at `k.experiment`.
+    pub(super) fn rig(
+        &mut self,
+        file: &StudyFile,
+        k: &KeyPath,
+        experiment: &str,
+    ) -> Option<&'static RigKind> {
+        let Some(rig) = catalogue::find(experiment) else {
+            let names = catalogue::names();
+            let hint = nearest_name(experiment, &names)
+                .map_or(String::new(), |n| format!("; did you mean '{n}'?"));
+            self.fail(
+                &k.key("experiment"),
+                format!(
+                    "unknown value '{experiment}': no rig of that name{hint} (accepted: {})",
+                    names.join(", ")
+                ),
+            );
+            return None;
+        };
+        let missing = match rig.world {
+            WorldKind::Pods if file.pods.is_none() => Some("[materials], [pods] and [pairs]"),
+            WorldKind::PullOff if file.rig.is_none() => Some("[rig]"),
+            _ => None,
+        };
+        if let Some(sections) = missing {
+            self.fail(
+                &k.key("experiment"),
+                format!("the {experiment} rig needs the study's {sections}"),
+            );
+            return None;
+        }
+        Some(rig)
+    }
+
     pub(super) fn quantity(
         &mut self,
         k: &KeyPath,
-        experiment: Experiment,
+        rig: &RigKind,
         quantity: &str,
         unit: Option<&str>,
     ) {
-        let accepted = quantities_of(experiment);
+        let experiment = rig.name;
+        let accepted = rig.quantities;
         match accepted.iter().find(|q| q.name == quantity) {
             Some(q) => {
                 if let Some(unit) = unit {
@@ -66,14 +108,19 @@ impl Validator<'_, '_> {
     pub(super) fn condition(
         &mut self,
         k: &KeyPath,
-        experiment: Experiment,
+        rig: &RigKind,
         condition: &BTreeMap<String, f64>,
     ) {
-        let accepted = conditions_of(experiment);
+        let experiment = rig.name;
+        let accepted = rig.conditions;
         let names: Vec<&str> = accepted.iter().map(|c| c.key).collect();
         for (key, value) in condition {
             match accepted.iter().find(|c| c.key == key) {
-                Some(c) => self.limit(&k.key(key), *value, c.limits),
+                Some(c) => {
+                    if let Err(reason) = c.check(*value) {
+                        self.fail(&k.key(key), reason);
+                    }
+                }
                 None => {
                     let hint = nearest_name(key, &names)
                         .map_or(String::new(), |n| format!("; did you mean '{n}'?"));
@@ -131,20 +178,24 @@ impl Validator<'_, '_> {
         }
     }
 
-    /// Checks that exactly one measurement matches a plan reference.
+    /// Checks that exactly one of the study's `measurements` matches a plan reference.
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn referenced(
         &mut self,
         file: &StudyFile,
+        measurements: &[Measurement],
         k: &KeyPath,
-        experiment: Experiment,
+        experiment: &str,
         quantity: &str,
         condition: &BTreeMap<String, f64>,
         role: &str,
     ) {
-        self.quantity(k, experiment, quantity, None);
-        self.condition(&k.key("condition"), experiment, condition);
-        let matching: Vec<usize> = file
-            .measurements
+        let Some(rig) = self.rig(file, k, experiment) else {
+            return;
+        };
+        self.quantity(k, rig, quantity, None);
+        self.condition(&k.key("condition"), rig, condition);
+        let matching: Vec<usize> = measurements
             .iter()
             .enumerate()
             .filter(|(_, m)| m.matches(experiment, quantity, condition))
@@ -159,7 +210,7 @@ impl Validator<'_, '_> {
                 ),
             ),
             1 => {
-                let m = &file.measurements[matching[0] - 1];
+                let m = &measurements[matching[0] - 1];
                 if m.mean().is_some_and(|x| x == 0.0) {
                     self.fail(k, format!("the {role} measurement's mean is 0, so a relative error is undefined"));
                 }

@@ -1,30 +1,39 @@
 //! Semantic checks of a decoded study: everything serde cannot see, all of it before any
 //! simulation starts, every failure collected.
 //!
+//! - header: a name, and a `kind` (seed 001's study has one) that fits the study;
 //! - names: materials referenced by pods and pairs exist; parameter names are in the
 //!   registry (else the nearest name is suggested) and their material or pair exists;
 //! - ranges: low < high, both within the physical limits of [`Limits`];
 //! - values: every material and pair value within its limits; every pair property has a
 //!   value or a range; shape-mix fractions sum to 1;
-//! - measurements: quantity and unit known for the experiment, condition keys known,
-//!   replicates or a summary (never both), no duplicate blocks;
+//! - measurements: the experiment is a rig of the catalogue whose world the study has,
+//!   quantity and unit known for it, condition keys known, replicates or a summary (never
+//!   both), no duplicate blocks;
 //! - plan: mode exists, the screening design has room for the factors and an error
-//!   estimate, the target and validation measurements exist and are unambiguous;
-//! - files: every STL resolves (relative to the study file), is readable and looks like STL.
+//!   estimate, one response surface with its settings, the target and validation
+//!   measurements exist and are unambiguous;
+//! - the pull-off study's `[rig]`, `[measurement]` and `[factors]`, and `[diagnosis]`
+//!   (their own modules);
+//! - files: every STL and topology resolves (relative to the study file), is readable and
+//!   parses.
 
 use std::collections::BTreeSet;
 use std::path::Path;
 
 mod measurements;
-mod plan;
-mod ranges;
+pub mod plan;
+pub mod ranges;
 
+use crate::limits::Limits;
+use crate::nearest_name::nearest_name;
+use crate::plant::topology::BondSet;
+use crate::rigs::pod_world::parameters;
+use crate::rigs::pod_world::Pods;
 use crate::study::error::StudyError;
 use crate::study::file_format::{StudyFile, PAIR_PROPERTIES};
 use crate::study::key_path::KeyPath;
-use crate::study::limits::Limits;
-use crate::study::nearest_name::nearest_name;
-use crate::study::parameters;
+use crate::study::pull_off::{ReadFile, KIND_PULL_OFF};
 use crate::study::source::Source;
 use crate::study::stl_check::check_stl;
 
@@ -39,21 +48,48 @@ pub const MIN_GRID_CELL_RADII: f64 = 2.0;
 /// Fewest replicated centre points that give a pure-error estimate (DESIGN §9).
 pub const MIN_BOX_BEHNKEN_CENTRE_POINTS: u32 = 2;
 
-/// Collects every semantic error of `file`; `dir` is the study file's directory.
-pub(crate) fn validate(src: &Source<'_>, file: &StudyFile, dir: &Path) -> Vec<StudyError> {
+/// Collects every semantic error of `file`; `dir` is the study file's directory, `read`
+/// reads the files it names. Returns the pull-off rig's junction and stalk bond sets too,
+/// when the study has that rig and they could be read.
+pub(crate) fn validate(
+    src: &Source<'_>,
+    file: &StudyFile,
+    dir: &Path,
+    read: ReadFile<'_>,
+) -> (Option<(BondSet, BondSet)>, Vec<StudyError>) {
     let mut v = Validator {
         src,
         errors: Vec::new(),
     };
     v.header(file);
-    v.materials(file);
-    v.pods(file, dir);
-    v.pairs(file);
-    v.contacts(file);
+    if let Some(pods) = &file.pods {
+        v.materials(file);
+        v.pods(pods, file, dir);
+        v.pairs(file);
+        v.contacts(pods, file);
+    }
     v.measurements(file);
     v.parameters(file);
-    v.plan(file);
-    v.errors
+    if let Some(plan) = &file.plan {
+        v.plan(file, plan);
+    }
+    if let Some(d) = &file.diagnosis {
+        v.errors.extend(crate::study::diagnosis::validate(src, d));
+    }
+    let mut sets = None;
+    if let Some(rig) = &file.rig {
+        let (found, errors) = crate::study::pull_off::validate(
+            src,
+            rig,
+            file.measurement.as_ref(),
+            &file.factors,
+            dir,
+            read,
+        );
+        sets = found;
+        v.errors.extend(errors);
+    }
+    (sets, v.errors)
 }
 
 struct Validator<'s, 'i> {
@@ -73,11 +109,24 @@ impl Validator<'_, '_> {
     }
 
     fn header(&mut self, file: &StudyFile) {
-        if file.study.name.trim().is_empty() {
-            self.fail(
-                &KeyPath::root().key("study").key("name"),
-                "the study needs a name",
-            );
+        let Some(header) = &file.study else { return };
+        let at = KeyPath::root().key("study");
+        if header.name.trim().is_empty() {
+            self.fail(&at.key("name"), "the study needs a name");
+        }
+        match &header.kind {
+            Some(kind) if kind != KIND_PULL_OFF => self.fail(
+                &at.key("kind"),
+                format!(
+                    "the one kind is '{KIND_PULL_OFF}' (a study's rigs follow from its \
+                     measurements), got '{kind}'"
+                ),
+            ),
+            Some(_) if file.rig.is_none() => self.fail(
+                &at.key("kind"),
+                format!("kind '{KIND_PULL_OFF}' needs the pull-off rig's [rig]"),
+            ),
+            _ => {}
         }
     }
 
@@ -101,9 +150,8 @@ impl Validator<'_, '_> {
         }
     }
 
-    fn pods(&mut self, file: &StudyFile, dir: &Path) {
+    fn pods(&mut self, p: &Pods, file: &StudyFile, dir: &Path) {
         let at = KeyPath::root().key("pods");
-        let p = &file.pods;
         if !file.materials.contains_key(&p.material) {
             self.fail(
                 &at.key("material"),
@@ -202,9 +250,12 @@ impl Validator<'_, '_> {
 
 impl Validator<'_, '_> {
     /// The pods touch each other and the walls, so those pairs must exist.
-    fn contacts(&mut self, file: &StudyFile) {
-        let pod = &file.pods.material;
-        let wall = &file.plan.simulation.wall_material;
+    fn contacts(&mut self, pods: &Pods, file: &StudyFile) {
+        let pod = &pods.material;
+        let Some(sim) = file.plan.as_ref().and_then(|p| p.simulation.as_ref()) else {
+            return;
+        };
+        let wall = &sim.wall_material;
         let wall_key = KeyPath::root()
             .key("plan")
             .key("simulation")

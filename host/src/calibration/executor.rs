@@ -1,0 +1,255 @@
+//! Where the engine's runs execute: a batch of a stage's runs is checked, looked up in the
+//! run cache, and the missing ones are simulated in parallel on a rayon pool of `jobs`
+//! threads. Results go back in run order, never completion order, so the thread count
+//! cannot change a number; each finished run is stored the moment it finishes, so an
+//! interrupted calibration resumes where it stopped.
+//!
+//! This is the one place that spreads rig runs over cores: a setting of how each run is
+//! executed (threads per run, say) belongs here and nowhere else.
+
+use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use rayon::prelude::*;
+use serde::Serialize;
+
+use super::error::CalibrateError;
+use super::factor::Factor;
+use super::objective::Objective;
+use super::progress::Progress;
+use super::rig::{response, ParameterValues, Responses, RunRequest};
+use super::run_cache::RunCache;
+use super::spec_hash::SpecHash;
+
+/// One run a stage asks for.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlannedRun {
+    /// Coded settings (the stage's coding, one per design column).
+    pub coded: Vec<f64>,
+    /// The factors this run sets (name → value in the factor's unit); every other factor
+    /// takes its held value.
+    pub values: ParameterValues,
+    /// Replicate index ([`RunRequest::replicate`]).
+    pub replicate: u32,
+}
+
+/// One finished run; serialised as `calibration.json` lists it (the factors' values as
+/// `actual`, without the rig's other responses).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunRecord {
+    /// 1-based run number within the stage (standard order).
+    pub run: usize,
+    /// Coded settings.
+    pub coded: Vec<f64>,
+    /// The factors the run set (name → value).
+    #[serde(rename = "actual")]
+    pub values: ParameterValues,
+    /// Replicate index.
+    pub replicate: u32,
+    /// Hash of the run's specification (its file under `runs/`).
+    pub spec_hash: SpecHash,
+    /// The objective's quantity, in its unit.
+    pub response: f64,
+    /// Every response the rig returned.
+    #[serde(skip)]
+    pub responses: Responses,
+}
+
+/// Replicate indices of `rows`: how many earlier rows have the same settings.
+pub fn replicate_indices(rows: &[Vec<f64>]) -> Vec<u32> {
+    rows.iter()
+        .enumerate()
+        .map(|(i, row)| rows[..i].iter().filter(|r| *r == row).count() as u32)
+        .collect()
+}
+
+/// Runs batches of runs; counts what it simulated and replayed.
+pub struct Executor {
+    cache: Option<RunCache>,
+    pool: rayon::ThreadPool,
+    progress: Progress,
+    simulated: AtomicUsize,
+    replayed: AtomicUsize,
+}
+
+impl Executor {
+    /// An executor with `jobs` threads (`None`: every core), storing runs in `cache_dir`
+    /// when given.
+    pub fn new(
+        jobs: Option<usize>,
+        cache_dir: Option<&Path>,
+        progress: Progress,
+    ) -> Result<Self, CalibrateError> {
+        let jobs = jobs.unwrap_or_else(|| {
+            std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get)
+        });
+        if jobs == 0 {
+            return Err(CalibrateError::Threads {
+                jobs,
+                reason: "at least one is needed".into(),
+            });
+        }
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(jobs)
+            .build()
+            .map_err(|e| CalibrateError::Threads {
+                jobs,
+                reason: e.to_string(),
+            })?;
+        let cache = cache_dir.map(RunCache::open).transpose()?;
+        Ok(Self {
+            cache,
+            pool,
+            progress,
+            simulated: AtomicUsize::new(0),
+            replayed: AtomicUsize::new(0),
+        })
+    }
+
+    /// Runs `work` on the pool (the desirability search uses it too).
+    pub fn install<R: Send>(&self, work: impl FnOnce() -> R + Send) -> R {
+        self.pool.install(work)
+    }
+
+    /// Runs simulated and replayed so far.
+    pub fn counts(&self) -> (usize, usize) {
+        (
+            self.simulated.load(Ordering::Relaxed),
+            self.replayed.load(Ordering::Relaxed),
+        )
+    }
+
+    /// Every factor's value for `run`: the run's settings, the held values elsewhere.
+    pub fn full_values(factors: &[Factor], run: &PlannedRun) -> ParameterValues {
+        let mut values: ParameterValues =
+            factors.iter().map(|f| (f.name.clone(), f.held)).collect();
+        values.extend(run.values.iter().map(|(k, v)| (k.clone(), *v)));
+        values
+    }
+
+    /// The rig's specification of run `index` of `stage`, after checking every value
+    /// against its factor's limits.
+    pub fn specification(
+        stage: &'static str,
+        index: usize,
+        objective: &Objective<'_>,
+        factors: &[Factor],
+        run: &PlannedRun,
+    ) -> Result<(ParameterValues, serde_json::Value), CalibrateError> {
+        let values = Self::full_values(factors, run);
+        for f in factors {
+            let value = values[&f.name];
+            f.admitted
+                .check(value)
+                .map_err(|reason| CalibrateError::OutOfLimits {
+                    stage,
+                    run: index + 1,
+                    parameter: f.name.clone(),
+                    value,
+                    reason,
+                })?;
+        }
+        let request = RunRequest {
+            values: &values,
+            condition: &objective.condition,
+            replicate: run.replicate,
+        };
+        let spec = objective
+            .rig
+            .specification(&request)
+            .map_err(|e| CalibrateError::Spec {
+                stage,
+                run: index + 1,
+                reason: e.0,
+            })?;
+        Ok((values, spec))
+    }
+
+    /// Simulates (or replays) every run of a stage in parallel and returns the records in
+    /// run order. Each finished run is stored at once; the first failure (in run order
+    /// among those that failed) stops the stage.
+    pub fn run_batch(
+        &self,
+        stage: &'static str,
+        objective: &Objective<'_>,
+        factors: &[Factor],
+        runs: &[PlannedRun],
+    ) -> Result<Vec<RunRecord>, CalibrateError> {
+        let specs = runs
+            .iter()
+            .enumerate()
+            .map(|(i, r)| Self::specification(stage, i, objective, factors, r))
+            .collect::<Result<Vec<_>, _>>()?;
+        let hashes: Vec<SpecHash> = specs.iter().map(|(_, s)| SpecHash::of(s)).collect();
+        let rig_id = objective.rig.id();
+        let mut results: Vec<Option<Responses>> = match &self.cache {
+            Some(cache) => specs
+                .iter()
+                .zip(&hashes)
+                .map(|((_, s), h)| cache.load(s, *h, &rig_id, &objective.quantity))
+                .collect(),
+            None => vec![None; runs.len()],
+        };
+        let missing: Vec<usize> = (0..runs.len()).filter(|&i| results[i].is_none()).collect();
+        let replayed = runs.len() - missing.len();
+        self.replayed.fetch_add(replayed, Ordering::Relaxed);
+        let bar = self.progress.stage(stage, runs.len(), replayed);
+        let outcome: Vec<Result<(usize, Responses), CalibrateError>> = self.pool.install(|| {
+            missing
+                .par_iter()
+                .map(|&i| {
+                    let failed = |reason: String| CalibrateError::Simulation {
+                        stage,
+                        run: i + 1,
+                        hash: hashes[i].to_string(),
+                        reason,
+                    };
+                    let (values, spec) = &specs[i];
+                    let request = RunRequest {
+                        values,
+                        condition: &objective.condition,
+                        replicate: runs[i].replicate,
+                    };
+                    let responses = objective.rig.run(&request).map_err(|e| failed(e.0))?;
+                    response(&responses, &objective.quantity).map_err(|e| failed(e.0))?;
+                    if let Some(cache) = &self.cache {
+                        cache.store(spec, hashes[i], &rig_id, &responses)?;
+                    }
+                    self.simulated.fetch_add(1, Ordering::Relaxed);
+                    bar.inc(1);
+                    Ok((i, responses))
+                })
+                .collect()
+        });
+        bar.finish_and_clear();
+        for item in outcome {
+            let (i, responses) = item?;
+            results[i] = Some(responses);
+        }
+        runs.iter()
+            .zip(results)
+            .zip(&hashes)
+            .enumerate()
+            .map(|(i, ((run, responses), hash))| {
+                let responses = responses.expect("every run finished");
+                let value = response(&responses, &objective.quantity).map_err(|e| {
+                    CalibrateError::Simulation {
+                        stage,
+                        run: i + 1,
+                        hash: hash.to_string(),
+                        reason: e.0,
+                    }
+                })?;
+                Ok(RunRecord {
+                    run: i + 1,
+                    coded: run.coded.clone(),
+                    values: run.values.clone(),
+                    replicate: run.replicate,
+                    spec_hash: *hash,
+                    response: value,
+                    responses,
+                })
+            })
+            .collect()
+    }
+}

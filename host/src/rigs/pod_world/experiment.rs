@@ -1,0 +1,50 @@
+//! The bench experiments of a pod world (issue 4 §2): the names a study gives them and the
+//! order they are listed in.
+
+use std::fmt;
+
+use serde::{Deserialize, Serialize};
+
+/// The virtual (and bench) experiments a study can measure and simulate (issue 4 §2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Experiment {
+    /// Stacking (repose) angle by cylinder lifting (seed 000 §2.7, §3.6.1).
+    Repose,
+    /// Drop onto the 45° plate (restitution rig, seed 000 §2.6.1).
+    PlateDrop,
+    /// Sliding on an inclined plane (static friction, seed 000 §2.6.2).
+    InclineSlide,
+    /// Rolling on an incline followed by a flat (rolling friction, seed 000 §2.6.3).
+    Rolling,
+    /// Compression between two plates (apparent modulus, seed 000 §2.5.3).
+    Compression,
+}
+
+impl Experiment {
+    /// Every experiment, in declaration order.
+    pub const ALL: [Experiment; 5] = [
+        Self::Repose,
+        Self::PlateDrop,
+        Self::InclineSlide,
+        Self::Rolling,
+        Self::Compression,
+    ];
+
+    /// The name used in study files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Repose => "repose",
+            Self::PlateDrop => "plate_drop",
+            Self::InclineSlide => "incline_slide",
+            Self::Rolling => "rolling",
+            Self::Compression => "compression",
+        }
+    }
+}
+
+impl fmt::Display for Experiment {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}

@@ -1,0 +1,220 @@
+//! The full specification of one pod bench run ([`RunSpec`]): the experiment and its
+//! condition, every material and pair value after the run's parameter values are applied,
+//! the pod geometry, the mode (pod and sphere counts) and the simulation settings.
+//! Free-text notes (`source`) are left out, so editing a citation does not invalidate the
+//! run cache. Its canonical JSON names the run ([`crate::calibration::spec_hash`]);
+//! [`SPEC_FORMAT_VERSION`] is part of it, so a change to what a spec means can retire old
+//! cache entries.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use super::experiment::Experiment;
+use super::parameters::{for_property, lookup, Owner};
+use super::sections::ShapeMix;
+use super::settings::{Mode, Simulation};
+use super::PodWorld;
+use crate::calibration::spec_hash::{canonical_json, fnv1a_64, SpecHash};
+
+/// Version of the [`RunSpec`] layout; bump it when the meaning of a field changes.
+pub const SPEC_FORMAT_VERSION: u32 = 1;
+
+/// Material values of one run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunMaterial {
+    /// Density, kg/m³.
+    pub density_kg_m3: f64,
+    /// Poisson ratio.
+    pub poisson: f64,
+    /// Shear modulus, Pa.
+    pub shear_modulus_pa: f64,
+}
+
+/// Pair values of one run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunPair {
+    /// Coefficient of restitution.
+    pub restitution: f64,
+    /// Coefficient of static friction.
+    pub static_friction: f64,
+    /// Coefficient of rolling friction.
+    pub rolling_friction: f64,
+}
+
+/// Pod geometry of one run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunPods {
+    /// Material name.
+    pub material: String,
+    /// Length, mm.
+    pub length_mm: f64,
+    /// Width, mm.
+    pub width_mm: f64,
+    /// Thickness, mm.
+    pub thickness_mm: f64,
+    /// Shape fractions.
+    pub shape_mix: ShapeMix,
+    /// Scanned shapes by shape: the path as written in the study and the FNV-1a 64 of the
+    /// file's bytes, so a re-scanned pod under the same name is a different run.
+    pub stl: BTreeMap<String, RunStl>,
+}
+
+/// A scanned shape in a run spec.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunStl {
+    /// The path as written in the study.
+    pub path: String,
+    /// FNV-1a 64 of the file's content, 16 hex digits.
+    pub content_fnv1a: String,
+}
+
+/// Everything that determines one simulation run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunSpec {
+    /// [`SPEC_FORMAT_VERSION`].
+    pub spec_format: u32,
+    /// The experiment.
+    pub experiment: Experiment,
+    /// The measurement condition (keys unit-suffixed).
+    pub condition: BTreeMap<String, f64>,
+    /// Material values after the run's parameter values.
+    pub materials: BTreeMap<String, RunMaterial>,
+    /// Pair values after the run's parameter values.
+    pub pairs: BTreeMap<String, RunPair>,
+    /// Pod geometry.
+    pub pods: RunPods,
+    /// Mode name and sizes.
+    pub mode: Mode,
+    /// Simulation settings, with condition overrides applied.
+    pub simulation: Simulation,
+}
+
+impl RunSpec {
+    /// The canonical JSON text the hash is taken over.
+    pub fn canonical_json(&self) -> String {
+        canonical_json(&serde_json::to_value(self).expect("a run spec serialises"))
+    }
+
+    /// FNV-1a 64 of [`RunSpec::canonical_json`].
+    pub fn spec_hash(&self) -> SpecHash {
+        SpecHash(fnv1a_64(self.canonical_json().as_bytes()))
+    }
+}
+
+impl PodWorld<'_> {
+    /// The full specification of one run of `experiment` at `condition`, with the
+    /// parameters in `values` (registry names → values) and every other parameter at its
+    /// held value ([`Study::held_value`]), in mode `mode`.
+    pub fn run_spec(
+        &self,
+        experiment: Experiment,
+        condition: &BTreeMap<String, f64>,
+        values: &BTreeMap<String, f64>,
+        mode: &str,
+    ) -> Result<RunSpec, String> {
+        let mode_settings = self
+            .modes
+            .get(mode)
+            .ok_or_else(|| format!("no mode '{mode}' in the study"))?
+            .clone();
+        for name in values.keys() {
+            if lookup(name).is_none() {
+                return Err(format!("unknown parameter '{name}'"));
+            }
+        }
+        let mut materials: BTreeMap<String, RunMaterial> = self
+            .materials
+            .iter()
+            .map(|(n, m)| {
+                let run = RunMaterial {
+                    density_kg_m3: m.density_kg_m3,
+                    poisson: m.poisson,
+                    shear_modulus_pa: m.shear_modulus_pa,
+                };
+                (n.clone(), run)
+            })
+            .collect();
+        let mut pairs = BTreeMap::new();
+        for name in self.pairs.keys() {
+            let get = |property: &str| -> Result<f64, String> {
+                let spec =
+                    for_property(name, property).filter(|s| matches!(s.sets.owner, Owner::Pair(_)));
+                match spec {
+                    Some(s) => values
+                        .get(s.name)
+                        .copied()
+                        .or_else(|| self.held_value(s))
+                        .ok_or_else(|| format!("{}: no value", s.name)),
+                    None => self.pairs[name]
+                        .property(property)
+                        .ok_or_else(|| format!("pair {name}: no {property}")),
+                }
+            };
+            pairs.insert(
+                name.clone(),
+                RunPair {
+                    restitution: get("restitution")?,
+                    static_friction: get("static_friction")?,
+                    rolling_friction: get("rolling_friction")?,
+                },
+            );
+        }
+        for (name, value) in values {
+            let spec = lookup(name).expect("checked above");
+            if let Owner::Material(m) = spec.sets.owner {
+                let mat = materials
+                    .get_mut(m)
+                    .ok_or_else(|| format!("{name}: the study has no material '{m}'"))?;
+                match spec.sets.property {
+                    "poisson" => mat.poisson = *value,
+                    "shear_modulus_pa" => mat.shear_modulus_pa = *value,
+                    other => return Err(format!("{name}: unsupported material property {other}")),
+                }
+            }
+        }
+        let mut simulation = self.simulation.clone();
+        if let Some(speed) = condition.get("lift_speed_m_s") {
+            simulation.repose.lift_speed_m_s = *speed;
+        }
+        let pods = self.pods;
+        Ok(RunSpec {
+            spec_format: SPEC_FORMAT_VERSION,
+            experiment,
+            condition: condition.clone(),
+            materials,
+            pairs,
+            pods: RunPods {
+                material: pods.material.clone(),
+                length_mm: pods.length_mm,
+                width_mm: pods.width_mm,
+                thickness_mm: pods.thickness_mm,
+                shape_mix: pods.shape_mix.clone(),
+                stl: self.run_stl()?,
+            },
+            mode: mode_settings,
+            simulation,
+        })
+    }
+}
+
+impl PodWorld<'_> {
+    /// Each scanned shape's path and content hash (the files were checked at load; one
+    /// that has since vanished is an error here).
+    fn run_stl(&self) -> Result<BTreeMap<String, RunStl>, String> {
+        let written = self.pods.stl.entries();
+        self.stl_paths()
+            .into_iter()
+            .zip(written)
+            .map(|((shape, resolved), (_, path))| {
+                let bytes = std::fs::read(&resolved)
+                    .map_err(|e| format!("cannot read {}: {e}", resolved.display()))?;
+                let stl = RunStl {
+                    path: path.to_owned(),
+                    content_fnv1a: SpecHash(fnv1a_64(&bytes)).to_string(),
+                };
+                Ok((shape.to_owned(), stl))
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,140 @@
+//! The study sections that describe a pod world: `[materials.<name>]` ([`Material`]),
+//! `[pods]` ([`Pods`]: the particle material, size, shape mix, optional scanned STLs) and
+//! `[pairs."<a>-<b>"]` ([`Pair`]: contact properties of two materials). Every key is
+//! unit-suffixed and in SI (or mm for pod geometry, as the seeds print it); every table
+//! denies unknown keys, so a misspelt key is an error rather than an ignored setting.
+
+use serde::{Deserialize, Serialize};
+
+/// `[materials.<name>]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Material {
+    /// Density, kg/m³.
+    pub density_kg_m3: f64,
+    /// Poisson ratio ν, dimensionless.
+    pub poisson: f64,
+    /// Shear modulus G, Pa.
+    pub shear_modulus_pa: f64,
+    /// Where the numbers are printed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub source: Option<String>,
+}
+
+impl Material {
+    /// Young's modulus E = 2G(1 + ν), Pa (seed 000 eq. (12) solved for E).
+    pub fn youngs_modulus_pa(&self) -> f64 {
+        2.0 * self.shear_modulus_pa * (1.0 + self.poisson)
+    }
+}
+
+/// `[pairs."<a>-<b>"]`. A property may be left out when `[parameters]` varies it; it then
+/// takes the range's centre wherever a fixed value is needed.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Pair {
+    /// Coefficient of restitution e, dimensionless.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub restitution: Option<f64>,
+    /// Coefficient of static friction μs, dimensionless.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub static_friction: Option<f64>,
+    /// Coefficient of rolling friction μr, dimensionless (CDT form, seed 000 eq. (7)).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rolling_friction: Option<f64>,
+    /// Where the numbers are printed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub source: Option<String>,
+}
+
+/// The contact properties of a pair, in file order.
+pub const PAIR_PROPERTIES: [&str; 3] = ["restitution", "static_friction", "rolling_friction"];
+
+impl Pair {
+    /// The value of property `name` (one of [`PAIR_PROPERTIES`]).
+    pub fn property(&self, name: &str) -> Option<f64> {
+        match name {
+            "restitution" => self.restitution,
+            "static_friction" => self.static_friction,
+            "rolling_friction" => self.rolling_friction,
+            _ => None,
+        }
+    }
+}
+
+/// `[pods]`: the particles of the study.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Pods {
+    /// The `[materials]` entry the pods are made of.
+    pub material: String,
+    /// Pod length L, mm.
+    pub length_mm: f64,
+    /// Pod width W, mm.
+    pub width_mm: f64,
+    /// Pod thickness H, mm.
+    pub thickness_mm: f64,
+    /// Fractions of each harvest-time shape (seed 000 §2.2.1); they sum to 1.
+    pub shape_mix: ShapeMix,
+    /// Scanned shapes, by shape, relative to the study file. A shape without one is
+    /// generated from L × W × H.
+    #[serde(default, skip_serializing_if = "StlPaths::is_empty")]
+    pub stl: StlPaths,
+}
+
+/// `[pods.shape_mix]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShapeMix {
+    /// Normal pods (two kernels with a waist).
+    pub normal: f64,
+    /// Cocoon pods.
+    pub cocoon: f64,
+    /// Single-grain ellipsoidal pods.
+    pub single_grain: f64,
+}
+
+impl ShapeMix {
+    /// (shape key, fraction), in file order.
+    pub fn entries(&self) -> [(&'static str, f64); 3] {
+        [
+            ("normal", self.normal),
+            ("cocoon", self.cocoon),
+            ("single_grain", self.single_grain),
+        ]
+    }
+}
+
+/// `[pods.stl]`: optional scanned STL file per shape.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StlPaths {
+    /// Normal pod scan.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal: Option<String>,
+    /// Cocoon pod scan.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cocoon: Option<String>,
+    /// Single-grain pod scan.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub single_grain: Option<String>,
+}
+
+impl StlPaths {
+    /// True when no shape has a scan.
+    pub fn is_empty(&self) -> bool {
+        self.entries().is_empty()
+    }
+
+    /// (shape key, path as written) for every shape that has a scan.
+    pub fn entries(&self) -> Vec<(&'static str, &str)> {
+        [
+            ("normal", &self.normal),
+            ("cocoon", &self.cocoon),
+            ("single_grain", &self.single_grain),
+        ]
+        .into_iter()
+        .filter_map(|(k, p)| p.as_deref().map(|p| (k, p)))
+        .collect()
+    }
+}

@@ -1,0 +1,368 @@
+//! Shared set-up of every rig: the study, the parameter values and the mode resolved into
+//! core materials and pairs ([`RunInputs`]), owned core storage ([`Arena`]), pod clumps in
+//! the study's shape mix, and the stepping helpers the rigs share.
+//!
+//! Materials: the study gives G and ν (seed 000 §3.1); the core takes E = 2G(1 + ν)
+//! (seed 000 eq. (12) solved for E). A pod ν ≥ 0.5 (seed 000 Table 3 screens 0.586) is
+//! passed with the core's explicit [`PoissonRange::ContactModel`] opt-in, only when the
+//! study's range says `poisson_above_half = true` (checked in [`super::values`]).
+
+use std::collections::BTreeMap;
+
+use arachis_core::body::MassProperties as CoreMass;
+use arachis_core::prelude::*;
+use arachis_core::scenario::SplitMix64;
+
+use super::error::ExperimentError;
+use super::run_spec::RunSpec;
+use super::settings::{Mode, Simulation};
+use super::templates::{PodTemplate, TemplateCache, TemplateKey, TemplateSet};
+use super::values::{check_values, ModeName, ParameterValues};
+use super::{Experiment, PodWorld};
+use crate::arena::OwnedStorage;
+use crate::shapes::{PodKind, ShapeMix};
+
+/// m per mm.
+pub const M_PER_MM: f64 = 1e-3;
+/// Poisson ratio at and above which the isotropic-solid check is waived (with the opt-in).
+pub const ISOTROPIC_POISSON_LIMIT: f64 = 0.5;
+
+/// Everything a rig needs, resolved from the study, the values and the mode.
+#[derive(Debug, Clone)]
+pub struct RunInputs {
+    /// The full run specification (its hash names the run, [`RunSpec::spec_hash`]).
+    pub spec: RunSpec,
+    /// Pod material.
+    pub pod: MaterialSpec,
+    /// Whether the pod material needs the ν ∈ (−1, 1) opt-in.
+    pub pod_poisson: PoissonRange,
+    /// Wall (rig) material.
+    pub wall: MaterialSpec,
+    /// Pod–pod contact (seed 000 x3–x5).
+    pub pod_pod: PairSpec,
+    /// Pod–wall contact (seed 000 x6–x8).
+    pub pod_wall: PairSpec,
+    /// The mode's pods and spheres per pod.
+    pub mode: Mode,
+    /// The mode's name.
+    pub mode_name: ModeName,
+    /// Pods in the full mode (for geometric scaling of the quick rig), if the study has it.
+    pub full_pods: Option<u32>,
+    /// Simulation settings (time-step fraction, gravity, repose rig).
+    pub simulation: Simulation,
+    /// The shape mix.
+    pub mix: ShapeMix,
+    /// Filled pod templates.
+    pub templates: TemplateSet,
+}
+
+fn study_error(experiment: Experiment, reason: impl Into<String>) -> ExperimentError {
+    ExperimentError::Study {
+        experiment: experiment.name(),
+        reason: reason.into(),
+    }
+}
+
+fn material(
+    spec: &RunSpec,
+    name: &str,
+    experiment: Experiment,
+) -> Result<MaterialSpec, ExperimentError> {
+    let m = spec
+        .materials
+        .get(name)
+        .ok_or_else(|| study_error(experiment, format!("no material '{name}'")))?;
+    Ok(MaterialSpec {
+        // seed 000 eq. (12): G = E/(2(1 + ν)).
+        youngs_modulus_pa: 2.0 * m.shear_modulus_pa * (1.0 + m.poisson),
+        poisson: m.poisson,
+        density_kg_m3: m.density_kg_m3,
+    })
+}
+
+fn pair(
+    spec: &RunSpec,
+    a: &str,
+    b: &str,
+    experiment: Experiment,
+) -> Result<PairSpec, ExperimentError> {
+    let p = spec
+        .pairs
+        .get(&format!("{a}-{b}"))
+        .or_else(|| spec.pairs.get(&format!("{b}-{a}")))
+        .ok_or_else(|| study_error(experiment, format!("no pair '{a}-{b}'")))?;
+    Ok(PairSpec::hertz_mindlin(
+        p.restitution,
+        p.static_friction,
+        p.rolling_friction,
+    ))
+}
+
+impl RunInputs {
+    /// Resolves `values` (checked against the registry and limits) over `world` at
+    /// `condition` in `mode`.
+    pub fn resolve(
+        world: &PodWorld<'_>,
+        experiment: Experiment,
+        condition: &BTreeMap<String, f64>,
+        values: &ParameterValues,
+        mode: ModeName,
+        cache: &TemplateCache,
+    ) -> Result<Self, ExperimentError> {
+        check_values(world, values)?;
+        if !world.modes.contains_key(mode.as_str()) {
+            return Err(ExperimentError::MissingMode {
+                mode: mode.as_str().to_owned(),
+            });
+        }
+        let spec = world
+            .run_spec(experiment, condition, values, mode.as_str())
+            .map_err(|reason| study_error(experiment, reason))?;
+        let pod_name = spec.pods.material.clone();
+        let wall_name = spec.simulation.wall_material.clone();
+        let pod = material(&spec, &pod_name, experiment)?;
+        let pod_poisson = if pod.poisson >= ISOTROPIC_POISSON_LIMIT {
+            PoissonRange::ContactModel
+        } else {
+            PoissonRange::Isotropic
+        };
+        let wall = material(&spec, &wall_name, experiment)?;
+        let pod_pod = pair(&spec, &pod_name, &pod_name, experiment)?;
+        let pod_wall = pair(&spec, &pod_name, &wall_name, experiment)?;
+        let m = &spec.pods.shape_mix;
+        let mix = ShapeMix::new([m.normal, m.cocoon, m.single_grain])?;
+        let key = TemplateKey {
+            dims_bits: [
+                spec.pods.length_mm,
+                spec.pods.width_mm,
+                spec.pods.thickness_mm,
+                pod.density_kg_m3,
+            ]
+            .map(f64::to_bits),
+            spheres_per_pod: spec.mode.spheres_per_pod,
+            stl: world
+                .stl_paths()
+                .into_iter()
+                .filter_map(|(k, p)| PodKind::from_key(k).map(|k| (k, p)))
+                .collect(),
+        };
+        let templates = cache.get(&key)?;
+        Ok(RunInputs {
+            mode: spec.mode.clone(),
+            mode_name: mode,
+            full_pods: world.modes.get("full").map(|m| m.pods),
+            simulation: spec.simulation.clone(),
+            spec,
+            pod,
+            pod_poisson,
+            wall,
+            pod_pod,
+            pod_wall,
+            mix,
+            templates,
+        })
+    }
+
+    /// The template of `kind`.
+    pub fn template(&self, kind: PodKind) -> &PodTemplate {
+        &self.templates[kind as usize]
+    }
+
+    /// The most common shape of the mix (the single pod of the one-pod rigs).
+    pub fn typical_kind(&self) -> PodKind {
+        PodKind::ALL.into_iter().fold(PodKind::Normal, |best, k| {
+            if self.mix.fraction(k) > self.mix.fraction(best) {
+                k
+            } else {
+                best
+            }
+        })
+    }
+
+    /// `n` pod shapes in the mix's proportions (largest remainders), shuffled by `rng`
+    /// (Fisher–Yates), so every placement seed mixes the shapes differently.
+    pub fn shuffled_kinds(&self, n: usize, rng: &mut SplitMix64) -> Vec<PodKind> {
+        let counts = self.mix.apportion(n);
+        let mut kinds: Vec<PodKind> = PodKind::ALL
+            .into_iter()
+            .zip(counts)
+            .flat_map(|(k, c)| std::iter::repeat_n(k, c))
+            .collect();
+        for i in (1..kinds.len()).rev() {
+            let j = rng.below(i as u64 + 1) as usize;
+            kinds.swap(i, j);
+        }
+        kinds
+    }
+}
+
+/// Owned storage for one core world.
+pub struct Arena(OwnedStorage<Fx>);
+
+impl Arena {
+    /// Room for `bodies` bodies made of `spheres` spheres in all.
+    pub fn new(bodies: usize, spheres: usize) -> Self {
+        Arena(OwnedStorage::new(StorageLengths::for_spheres(
+            bodies.max(1),
+            spheres.max(1),
+        )))
+    }
+
+    /// A world over this storage.
+    pub fn world(&mut self, experiment: Experiment) -> Result<World<'_, Fx>, ExperimentError> {
+        World::new(self.0.storage()).map_err(|reason| setup_error(experiment, reason))
+    }
+}
+
+/// Wraps a core set-up error.
+pub fn setup_error(experiment: Experiment, source: SetupError) -> ExperimentError {
+    ExperimentError::Setup {
+        experiment: experiment.name(),
+        reason: source,
+    }
+}
+
+/// The materials and pairs of a rig, added to a fresh world.
+#[derive(Debug, Clone, Copy)]
+pub struct RigMaterials {
+    /// Pod material id.
+    pub pod: MaterialId,
+    /// Wall material id.
+    pub wall: MaterialId,
+}
+
+/// Adds the pod and wall materials, both pairs and gravity (−z) to `w`.
+pub fn add_materials(
+    w: &mut World<'_, Fx>,
+    inputs: &RunInputs,
+    experiment: Experiment,
+) -> Result<RigMaterials, ExperimentError> {
+    let e = |s| setup_error(experiment, s);
+    let pod = w
+        .add_material_with(inputs.pod, inputs.pod_poisson)
+        .map_err(e)?;
+    let wall = w.add_material(inputs.wall).map_err(e)?;
+    w.set_pair(pod, pod, inputs.pod_pod).map_err(e)?;
+    w.set_pair(pod, wall, inputs.pod_wall).map_err(e)?;
+    w.set_gravity_m_s2([0.0, 0.0, -inputs.simulation.gravity_m_s2])
+        .map_err(e)?;
+    Ok(RigMaterials { pod, wall })
+}
+
+/// Rotation matrix of unit quaternion `q = [w, x, y, z]` (rows).
+pub fn quat_matrix(q: [f64; 4]) -> [[f64; 3]; 3] {
+    let [w, x, y, z] = q;
+    [
+        [
+            1.0 - 2.0 * (y * y + z * z),
+            2.0 * (x * y - w * z),
+            2.0 * (x * z + w * y),
+        ],
+        [
+            2.0 * (x * y + w * z),
+            1.0 - 2.0 * (x * x + z * z),
+            2.0 * (y * z - w * x),
+        ],
+        [
+            2.0 * (x * z - w * y),
+            2.0 * (y * z + w * x),
+            1.0 - 2.0 * (x * x + y * y),
+        ],
+    ]
+}
+
+/// A uniform number in [0, 1) from 53 random bits.
+pub fn unit_uniform(rng: &mut SplitMix64) -> f64 {
+    const MANTISSA_BITS: u32 = 53;
+    (rng.next_u64() >> (64 - MANTISSA_BITS)) as f64 / (1u64 << MANTISSA_BITS) as f64
+}
+
+/// A uniformly random orientation (Shoemake 1992, "Uniform random rotations").
+pub fn random_quaternion(rng: &mut SplitMix64) -> [f64; 4] {
+    use std::f64::consts::TAU;
+    let (u1, u2, u3) = (unit_uniform(rng), unit_uniform(rng), unit_uniform(rng));
+    let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
+    [
+        b * (TAU * u3).cos(),
+        a * (TAU * u2).sin(),
+        a * (TAU * u2).cos(),
+        b * (TAU * u3).sin(),
+    ]
+}
+
+/// Adds `template` as a clump with its centre of mass at `position_mm`, its principal frame
+/// turned by `q`, moving at `velocity_m_s`.
+pub fn add_pod(
+    w: &mut World<'_, Fx>,
+    template: &PodTemplate,
+    material: MaterialId,
+    position_mm: [f64; 3],
+    q: [f64; 4],
+    velocity_m_s: [f64; 3],
+    experiment: Experiment,
+) -> Result<BodyId, ExperimentError> {
+    let r = quat_matrix(q);
+    let spheres: Vec<ClumpSphere> = template
+        .spheres
+        .iter()
+        .map(|s| {
+            let c = s.centre_mm;
+            let world = [0, 1, 2]
+                .map(|i| position_mm[i] + r[i][0] * c[0] + r[i][1] * c[1] + r[i][2] * c[2]);
+            ClumpSphere {
+                center_m: world.map(|x| x * M_PER_MM),
+                radius_m: s.radius_mm * M_PER_MM,
+                material,
+            }
+        })
+        .collect();
+    let mass = CoreMass {
+        mass_kg: template.mass.mass_kg,
+        center_of_mass_m: position_mm.map(|x| x * M_PER_MM),
+        principal_inertia_kg_m2: template.mass.principal_inertia_kg_m2,
+        principal_axes: q,
+    };
+    let spec = ClumpSpec {
+        spheres: &spheres,
+        velocity_m_s,
+        angular_velocity_rad_s: [0.0; 3],
+    };
+    w.add_clump_with_mass(&spec, &mass)
+        .map_err(|s| setup_error(experiment, s))
+}
+
+/// Sets dt to the study's fraction of the smallest Rayleigh time (seed 000 §2.7: 20 %).
+pub fn set_rayleigh_timestep(
+    w: &mut World<'_, Fx>,
+    inputs: &RunInputs,
+    experiment: Experiment,
+) -> Result<f64, ExperimentError> {
+    let dt = inputs.simulation.dt_rayleigh_fraction * w.min_rayleigh_time_s();
+    w.set_timestep_s(dt)
+        .map_err(|s| setup_error(experiment, s))?;
+    Ok(dt)
+}
+
+/// Runs `steps` steps, naming the time of a failure.
+pub fn run_steps(
+    w: &mut World<'_, Fx>,
+    steps: u64,
+    experiment: Experiment,
+) -> Result<(), ExperimentError> {
+    w.run(steps).map_err(|reason| ExperimentError::Step {
+        experiment: experiment.name(),
+        time_s: w.time_s(),
+        reason,
+    })
+}
+
+/// Steps in `duration_s` at the world's dt (at least one).
+pub fn steps_for(w: &World<'_, Fx>, duration_s: f64) -> u64 {
+    ((duration_s / w.timestep_s()).round() as u64).max(1)
+}
+
+/// Kinetic energy, J (the core reports mJ).
+pub fn kinetic_energy_j(w: &World<'_, Fx>) -> f64 {
+    const J_PER_MJ: f64 = 1e-3;
+    w.kinetic_energy_mj() * J_PER_MJ
+}

@@ -1,0 +1,227 @@
+//! `[diagnosis]`: a study of the single-sphere rigs (rebound, press, fall, unload) written
+//! for the diagnosis loop — the current calibration of their parameters and, per
+//! experiment, measurements at several conditions with replicates (or, in a template for
+//! `arachis synth`, how many replicates to make).
+//!
+//! ```toml
+//! [diagnosis]
+//! name = "pods, lab 2026-11"
+//! [diagnosis.calibration]          # base parameters; effects default to 0 (off)
+//! restitution = 0.5
+//! youngs_modulus_pa = 8.43e6
+//! [[diagnosis.experiment]]
+//! kind = "rebound"                 # a single-sphere rig: rebound | press | fall | unload
+//! noise_sd = 0.01                  # optional: used only by `arachis synth`
+//! [[diagnosis.experiment.point]]
+//! condition = 0.05                 # the rig's one condition (drop height, m)
+//! values = [0.551, 0.562, 0.548]   # replicates; or `replicates = 5` in a template
+//! ```
+
+use serde::{Deserialize, Serialize};
+
+use super::error::StudyError;
+use super::key_path::KeyPath;
+use super::source::Source;
+use crate::rigs::catalogue;
+use crate::rigs::kind::WorldKind;
+use crate::rigs::single_sphere::ModelParams;
+
+/// `[diagnosis]`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DiagnosisSection {
+    /// Free-text name.
+    #[serde(default)]
+    pub name: String,
+    /// The current calibration (base parameters and any effects already on).
+    pub calibration: ModelParams,
+    /// The experiments.
+    #[serde(default)]
+    pub experiment: Vec<DiagnosisExperiment>,
+}
+
+/// One experiment: a single-sphere rig and its measured points.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DiagnosisExperiment {
+    /// The rig.
+    pub kind: String,
+    /// Measurement noise SD in the observable's unit; only `arachis synth` uses it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub noise_sd: Option<f64>,
+    /// Measurements at each condition.
+    pub point: Vec<Point>,
+}
+
+/// Replicate measurements at one condition.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Point {
+    /// The rig's condition (its unit).
+    pub condition: f64,
+    /// Replicate measurements (the rig's quantity's unit).
+    #[serde(default)]
+    pub values: Vec<f64>,
+    /// Number of replicates to synthesise (templates only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub replicates: Option<usize>,
+}
+
+/// The file of a diagnosis study, as `arachis synth` writes it.
+#[derive(Serialize)]
+struct DiagnosisFile<'a> {
+    diagnosis: &'a DiagnosisSection,
+}
+
+/// Largest replicate count a template may ask for.
+pub const MAX_REPLICATES: usize = 1000;
+
+impl DiagnosisSection {
+    /// The section as a whole study file (TOML).
+    pub fn to_toml(&self) -> Result<String, toml::ser::Error> {
+        toml::to_string(&DiagnosisFile { diagnosis: self })
+    }
+}
+
+/// Every error of a decoded `[diagnosis]`: the calibration's ranges, each experiment's rig
+/// (a single-sphere one), its noise SD, and each point's condition (inside the rig's range,
+/// no condition twice), values (finite) and replicate count.
+pub(crate) fn validate(src: &Source<'_>, d: &DiagnosisSection) -> Vec<StudyError> {
+    let mut errors = Vec::new();
+    let at = KeyPath::root().key("diagnosis");
+    let mut err = |key: KeyPath, reason: String| errors.push(src.error(&key, reason));
+    if let Err(reason) = d.calibration.validate() {
+        err(at.key("calibration"), reason);
+    }
+    if d.experiment.is_empty() {
+        err(
+            at.clone(),
+            "the study has no [[diagnosis.experiment]]".into(),
+        );
+    }
+    let rigs: Vec<&str> = catalogue::RIGS
+        .iter()
+        .filter(|k| k.world == WorldKind::Fixed)
+        .map(|k| k.name)
+        .collect();
+    for (ei, e) in d.experiment.iter().enumerate() {
+        let here = at.key("experiment").index(ei);
+        let Some(kind) = catalogue::find(&e.kind).filter(|k| rigs.contains(&k.name)) else {
+            err(
+                here.key("kind"),
+                format!("unknown value '{}' (accepted: {})", e.kind, rigs.join(", ")),
+            );
+            continue;
+        };
+        let what = format!("experiment {} ({})", ei + 1, e.kind);
+        if e.point.is_empty() {
+            err(here.clone(), format!("{what} has no points"));
+        }
+        if let Some(s) = e.noise_sd {
+            if !(s.is_finite() && s >= 0.0) {
+                err(
+                    here.key("noise_sd"),
+                    format!("{what}: noise_sd {s} must be >= 0"),
+                );
+            }
+        }
+        let condition = kind.conditions[0];
+        for (pi, p) in e.point.iter().enumerate() {
+            let at_point = here.key("point").index(pi);
+            if let Err(reason) = condition.check(p.condition) {
+                err(
+                    at_point.key("condition"),
+                    format!("{what} point {}: condition {reason}", pi + 1),
+                );
+            }
+            if e.point[..pi].iter().any(|q| q.condition == p.condition) {
+                err(
+                    at_point.key("condition"),
+                    format!(
+                        "{what}: condition {} appears twice; put all replicates in one point",
+                        p.condition
+                    ),
+                );
+            }
+            if let Some(v) = p.values.iter().find(|v| !v.is_finite()) {
+                err(
+                    at_point.key("values"),
+                    format!("{what} point {}: value {v} is not a finite number", pi + 1),
+                );
+            }
+            if let Some(r) = p.replicates {
+                if !(1..=MAX_REPLICATES).contains(&r) {
+                    err(
+                        at_point.key("replicates"),
+                        format!(
+                            "{what} point {}: replicates {r} must be in 1..={MAX_REPLICATES}",
+                            pi + 1
+                        ),
+                    );
+                }
+            }
+        }
+    }
+    errors
+}
+
+impl super::Study {
+    /// The study as TOML with `values[s][p]` as the replicates of point `p` of series `s`
+    /// (the order of [`super::Study::series`]), for `arachis synth`: a `[diagnosis]` study
+    /// is written as its section alone (so a template becomes a measured study, byte for
+    /// byte what earlier versions wrote); a study with `[[measurements]]` gets their
+    /// `values`, replacing a printed mean. Comments are not kept.
+    pub fn toml_with_replicates(&self, values: &[Vec<Vec<f64>>]) -> Result<String, String> {
+        let mut out = self.file().clone();
+        if out.measurement.is_some() {
+            return Err(
+                "a pull-off study's [measurement] holds one printed force, not replicates".into(),
+            );
+        }
+        let mut series = values.iter();
+        if let Some(d) = &mut out.diagnosis {
+            for e in &mut d.experiment {
+                let v = series
+                    .next()
+                    .ok_or("fewer replicate sets than experiments")?;
+                for (p, v) in e.point.iter_mut().zip(v) {
+                    p.values = v.clone();
+                    p.replicates = None;
+                }
+            }
+        }
+        let rest: Vec<&Vec<Vec<f64>>> = series.collect();
+        // [[measurements]] blocks are grouped into series by experiment and quantity in
+        // order of first appearance (as `study_series` groups them).
+        let mut groups: Vec<(String, String, usize)> = Vec::new();
+        for m in &mut out.measurements {
+            let g = match groups
+                .iter()
+                .position(|(e, q, _)| *e == m.experiment && *q == m.quantity)
+            {
+                Some(g) => g,
+                None => {
+                    groups.push((m.experiment.clone(), m.quantity.clone(), 0));
+                    groups.len() - 1
+                }
+            };
+            let point = groups[g].2;
+            groups[g].2 += 1;
+            let v = rest
+                .get(g)
+                .and_then(|s| s.get(point))
+                .ok_or("fewer replicate sets than measurements")?;
+            m.values = Some(v.clone());
+            m.mean = None;
+            m.sd = None;
+            m.n = None;
+        }
+        match (
+            &out.diagnosis,
+            out.study.is_none() && out.measurements.is_empty(),
+        ) {
+            (Some(d), true) => d.to_toml().map_err(|e| e.to_string()),
+            _ => toml::to_string_pretty(&out).map_err(|e| e.to_string()),
+        }
+    }
+}
