@@ -26,6 +26,7 @@ use arachis_core::owned::OwnedThreadScratch;
 use arachis_core::step::parts::Parallel;
 use arachis_core::world::World;
 use rayon::prelude::*;
+use std::cell::Cell;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
@@ -53,6 +54,28 @@ pub fn default_threads() -> usize {
     }
 }
 
+thread_local! {
+    /// Threads per run for [`run`] on this thread, set by [`with_threads`] (0: the default).
+    static RUN_THREADS: Cell<usize> = const { Cell::new(0) };
+}
+
+/// Run `f` with [`run`] stepping on `threads` threads on this thread: a campaign that runs
+/// several simulations at once gives each its share of the cores.
+pub fn with_threads<R>(threads: usize, f: impl FnOnce() -> R) -> R {
+    let before = RUN_THREADS.with(|t| t.replace(threads.clamp(1, MAX_THREADS)));
+    let result = f();
+    RUN_THREADS.with(|t| t.set(before));
+    result
+}
+
+/// The threads [`run`] uses on this thread.
+pub fn run_threads() -> usize {
+    match RUN_THREADS.with(Cell::get) {
+        0 => default_threads(),
+        n => n,
+    }
+}
+
 /// Set the threads per run of [`run`] for the rest of the process (a speed setting: in fixed
 /// point the result does not depend on it). Errors as [`check_threads`].
 pub fn set_default_threads(threads: usize) -> anyhow::Result<()> {
@@ -60,12 +83,12 @@ pub fn set_default_threads(threads: usize) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Run `steps` steps of `world` on [`default_threads`] threads (the pool is built once per
+/// Run `steps` steps of `world` on [`run_threads`] threads (the pool is built once per
 /// thread count and shared; the per-thread force arenas are allocated per call, so call it
 /// for many steps at a time). Small worlds, where a thread hand-off costs more than it
 /// saves, step on the calling thread.
 pub fn run<S: Scalar>(world: &mut World<'_, S>, steps: u64) -> Result<(), StepError> {
-    let threads = default_threads();
+    let threads = run_threads();
     if threads <= 1 || world.spheres().len() < MIN_SPHERES_PER_THREAD * threads {
         return world.run(steps);
     }

@@ -194,6 +194,9 @@ impl Executor {
         let replayed = runs.len() - missing.len();
         self.replayed.fetch_add(replayed, Ordering::Relaxed);
         let bar = self.progress.stage(stage, runs.len(), replayed);
+        // The runs of a stage share the cores: each steps on its share of the threads.
+        let in_flight = self.pool.current_num_threads().min(missing.len()).max(1);
+        let threads_per_run = (crate::stepping::default_threads() / in_flight).max(1);
         let outcome: Vec<Result<(usize, Responses), CalibrateError>> = self.pool.install(|| {
             missing
                 .par_iter()
@@ -210,7 +213,10 @@ impl Executor {
                         condition: &objective.condition,
                         replicate: runs[i].replicate,
                     };
-                    let responses = objective.rig.run(&request).map_err(|e| failed(e.0))?;
+                    let responses = crate::stepping::with_threads(threads_per_run, || {
+                        objective.rig.run(&request)
+                    })
+                    .map_err(|e| failed(e.0))?;
                     response(&responses, &objective.quantity).map_err(|e| failed(e.0))?;
                     if let Some(cache) = &self.cache {
                         cache.store(spec, hashes[i], &rig_id, &responses)?;

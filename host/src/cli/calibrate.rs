@@ -245,12 +245,14 @@ pub fn calibrate_study(args: &Args, study: &Study) -> anyhow::Result<()> {
          {} %)",
         v.simulated, v.measured, v.relative_error_pct, v.max_relative_error_pct
     );
+    // The thread count is printed, not written: calibration.json is the same bytes for any.
     println!(
-        "{} runs simulated, {} replayed from {}, in {:.1} s",
+        "{} runs simulated, {} replayed from {}, in {:.1} s ({} threads)",
         outcome.simulated,
         outcome.replayed,
         out.join(crate::calibration::RUNS_DIR).display(),
-        started.elapsed().as_secs_f64()
+        started.elapsed().as_secs_f64(),
+        crate::stepping::default_threads()
     );
     println!("report: {}", out.join(crate::report::REPORT_FILE).display());
     validation_verdict(

@@ -120,6 +120,8 @@ struct Report<'a> {
     pass_time_s: f64,
     wall_seconds: f64,
     scalar: &'static str,
+    /// Threads each pass could step on (`--threads` shared among the passes run at once).
+    threads: usize,
 }
 
 /// Runs `arachis harvest`.
@@ -267,5 +269,6 @@ fn report<'a>(
         pass_time_s: outcome.pass_time_s,
         wall_seconds,
         scalar,
+        threads: crate::stepping::default_threads(),
     }
 }

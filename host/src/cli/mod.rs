@@ -25,6 +25,11 @@ use clap::{Parser, Subcommand};
 #[derive(Debug, Parser)]
 #[command(name = "arachis", version, about)]
 pub struct Cli {
+    /// Threads each simulation steps on (default: every core; a campaign that runs several
+    /// simulations at once gives each its share). In fixed point the results do not depend
+    /// on it.
+    #[arg(long, global = true, value_name = "N", allow_hyphen_values = true)]
+    pub threads: Option<usize>,
     /// What to do.
     #[command(subcommand)]
     pub command: Command,
@@ -69,6 +74,9 @@ pub enum Command {
 impl Cli {
     /// Runs the chosen subcommand.
     pub fn run(self) -> anyhow::Result<()> {
+        if let Some(threads) = self.threads {
+            crate::stepping::set_default_threads(threads)?;
+        }
         match self.command {
             Command::Pour(args) => pour::run(args),
             Command::Lab(args) => lab::run(args),

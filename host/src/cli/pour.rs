@@ -9,8 +9,8 @@
 //! insertion and settling included" (DESIGN §8); writing VTK files comes after the clock
 //! stops. `bed_height_m` is the 95th percentile of z + R, `com_height_m` the mean z (issue 2),
 //! `digest` the core's state digest as 16 hex digits. A progress bar goes to stderr when it
-//! is a terminal. `--threads N` steps on N threads (default: every core); in fixed point the
-//! digest is the same for any N.
+//! is a terminal. The global `--threads N` steps on N threads (default: every core); in fixed
+//! point the digest is the same for any N.
 //!
 //! ```text
 //! arachis pour --particles 2000 --steps 20000 --dt 2e-5 [--f64] [--threads N] [--vtk DIR] [--frames 20]
@@ -30,7 +30,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use crate::arena::OwnedStorage;
-use crate::stepping::{check_threads, default_threads, Stepper};
+use crate::stepping::{default_threads, Stepper};
 use crate::vtk::{write_series, ParticleFrame};
 
 /// Steps between progress-bar updates: often enough to look live, rarely enough to cost
@@ -64,9 +64,6 @@ pub struct Args {
     /// Seed of the random insertion.
     #[arg(long, default_value_t = bench_bed::DEFAULT_SEED)]
     pub seed: u64,
-    /// Threads to step on (default: every core). The fixed-point result does not depend on it.
-    #[arg(long, default_value_t = default_threads(), allow_hyphen_values = true)]
-    pub threads: usize,
 }
 
 /// The JSON line printed by `arachis pour` (SI units).
@@ -115,7 +112,6 @@ fn check_args(args: &Args) -> anyhow::Result<()> {
         args.particles
     );
     ensure!(args.steps >= 1, "--steps must be at least 1");
-    check_threads(args.threads)?;
     ensure!(
         args.dt.is_finite() && args.dt > 0.0,
         "--dt must be a positive number of seconds, got {}",
@@ -179,7 +175,7 @@ fn pour<S: Scalar>(args: &Args) -> anyhow::Result<(PourReport, Vec<ParticleFrame
         seed: args.seed,
     };
     let mut arenas = OwnedStorage::<S>::new(bed.storage_lengths());
-    let mut stepper = Stepper::<S>::new(args.threads)?;
+    let mut stepper = Stepper::<S>::new(default_threads())?;
     let bar = progress_bar(args.steps);
     bar.set_message("inserting");
     let started = Instant::now();

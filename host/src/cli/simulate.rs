@@ -67,6 +67,8 @@ struct Printed<'a> {
     /// CPU seconds of the simulating thread (a figure of this machine; not part of the
     /// deterministic observation).
     cpu_seconds: Option<f64>,
+    /// Threads the simulation stepped on (`--threads`; the observation does not depend on it).
+    threads: usize,
     observation: &'a Observation,
 }
 
@@ -152,6 +154,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             values: &values,
             spec_hash: spec_hash.to_string(),
             cpu_seconds,
+            threads: crate::stepping::run_threads(),
             observation: &observation,
         };
         println!("{}", serde_json::to_string_pretty(&printed)?);

@@ -179,10 +179,15 @@ pub fn run_harvest<S: arachis_core::num::Scalar>(
             jobs.push((r as usize, seed, PlantLayout::draw(&mut rng)));
         }
     }
+    // The passes share the cores: each steps on its share of the threads.
+    let in_flight = rayon::current_num_threads().min(jobs.len()).max(1);
+    let threads_per_pass = (crate::stepping::default_threads() / in_flight).max(1);
     let results: Vec<PassResult> = jobs
         .par_iter()
         .map(|(_, _, layout)| {
-            run_pass::<S>(&config.machine, model, layout, config.frame_every, progress)
+            crate::stepping::with_threads(threads_per_pass, || {
+                run_pass::<S>(&config.machine, model, layout, config.frame_every, progress)
+            })
         })
         .collect::<Result<_, _>>()?;
     let mut replicates: Vec<Replicate> = (0..config.replicates)

@@ -335,7 +335,7 @@ pub fn run_pass<S: Scalar>(
     let m_of = |mm: f64| mm / LENGTH_M_TO_MM;
     while w.step_count() < steps {
         let chunk = CHECK_EVERY_STEPS.min(steps - w.step_count());
-        w.run(chunk).map_err(|e| HarvestError::Step {
+        crate::stepping::run(&mut w, chunk).map_err(|e| HarvestError::Step {
             time_s: w.time_s(),
             what: e.to_string(),
         })?;

@@ -319,7 +319,7 @@ impl Rig for BenchBedRig {
         world
             .set_pair(pod, steel, setup.pod_steel)
             .map_err(core_error)?;
-        world.run(setup.steps).map_err(core_error)?;
+        crate::stepping::run(&mut world, setup.steps).map_err(core_error)?;
         let mut scratch = vec![0.0; world.spheres().len()];
         let bed = bed_height_mm(&world, &mut scratch)
             .ok_or_else(|| RigError("the bed has no spheres to measure".to_owned()))?;

@@ -343,13 +343,14 @@ pub fn set_rayleigh_timestep(
     Ok(dt)
 }
 
-/// Runs `steps` steps, naming the time of a failure.
+/// Runs `steps` steps on the run's threads ([`crate::stepping::run`]), naming the time of a
+/// failure.
 pub fn run_steps(
     w: &mut World<'_, Fx>,
     steps: u64,
     experiment: Experiment,
 ) -> Result<(), ExperimentError> {
-    w.run(steps).map_err(|reason| ExperimentError::Step {
+    crate::stepping::run(w, steps).map_err(|reason| ExperimentError::Step {
         experiment: experiment.name(),
         time_s: w.time_s(),
         reason,
