@@ -109,7 +109,10 @@ pub mod prelude {
         Body, BodyForce, BodyId, ClumpSpec, ClumpSphere, MassProperties, Sphere, SphereSpec,
         Storage, StorageLengths,
     };
-    pub use crate::contact::{ContactSlot, EffectHistory, NeighbourEntry};
+    pub use crate::contact::{
+        ContactSlot, Conventions, EffectHistory, FrictionConvention, NeighbourEntry,
+        RollingConvention,
+    };
     pub use crate::error::{SetupError, StepError};
     pub use crate::material::{MaterialId, MaterialSpec, PoissonRange};
     pub use crate::num::{Fx, Scalar, Vec3};

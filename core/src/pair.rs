@@ -15,8 +15,9 @@ use crate::contact::{
     CohesionJkr, CohesionSjkr, HystereticNormal, RollingEpsd, ViscoelasticNormal,
 };
 use crate::contact::{
-    ContactForce, ContactKinematics, ContactState, ContactTerm, CoulombLimit, HertzNormal,
-    MindlinTangential, NormalDamping, RollingCdt, TangentialDamping,
+    ContactForce, ContactKinematics, ContactState, ContactTerm, Conventions, CoulombLimit,
+    FrictionConvention, HertzNormal, MindlinTangential, NormalDamping, RollingCdt,
+    RollingCdtLiggghts, RollingConvention, TangentialDamping,
 };
 use crate::error::SetupError;
 use crate::material::{finite, Material};
@@ -62,6 +63,9 @@ pub struct PairSpec {
     pub rolling_friction: f64,
     /// Which terms are on.
     pub terms: TermSwitches,
+    /// Which engine's reading of rolling friction and the Coulomb limit
+    /// ([`crate::contact::convention`]); EDEM's by default.
+    pub conventions: Conventions,
 }
 
 impl PairSpec {
@@ -72,6 +76,15 @@ impl PairSpec {
             friction,
             rolling_friction,
             terms: TermSwitches::ALL,
+            conventions: Conventions::EDEM,
+        }
+    }
+
+    /// The same pair in other conventions.
+    pub fn with_conventions(self, conventions: Conventions) -> Self {
+        PairSpec {
+            conventions,
+            ..self
         }
     }
 
@@ -118,8 +131,10 @@ pub struct PairParams<S> {
     pub tangential_damping: TangentialDamping<S>,
     /// Coulomb limit.
     pub coulomb: CoulombLimit<S>,
-    /// CDT rolling friction.
+    /// CDT rolling friction in EDEM's convention.
     pub rolling: RollingCdt<S>,
+    /// CDT rolling friction in LIGGGHTS' convention (off unless the pair asks for it).
+    pub rolling_liggghts: RollingCdtLiggghts<S>,
     /// Optional effect: viscoelastic normal damping (off by default; [`crate::effects`]).
     pub viscoelastic: ViscoelasticNormal<S>,
     /// Optional effect: SJKR cohesion (off by default; [`crate::effects`]).
@@ -151,6 +166,7 @@ impl<S: Scalar> PairParams<S> {
             tangential_damping: TangentialDamping::new(spec.restitution, g_star),
             coulomb: CoulombLimit::new(spec.friction),
             rolling: RollingCdt::new(spec.rolling_friction),
+            rolling_liggghts: RollingCdtLiggghts::new(spec.rolling_friction, e_star),
             viscoelastic: ViscoelasticNormal::default(),
             cohesion: CohesionSjkr::default(),
             hysteretic: HystereticNormal::default(),
@@ -164,13 +180,20 @@ impl<S: Scalar> PairParams<S> {
         p.tangential_damping.on &= t.tangential_damping && t.mindlin_tangential;
         p.coulomb.on &= t.coulomb_limit && t.mindlin_tangential;
         p.rolling.on &= t.rolling_cdt;
+        p.rolling_liggghts.on &= t.rolling_cdt;
+        match spec.conventions.rolling {
+            RollingConvention::Edem => p.rolling_liggghts.on = false,
+            RollingConvention::LiggghtsCdt => p.rolling.on = false,
+        }
+        p.coulomb.spring_only = spec.conventions.friction == FrictionConvention::Liggghts;
         p.fuse();
         p
     }
 
     /// Set [`PairParams::fused`] from the terms: the fused law applies to a defined pair with
-    /// no optional effect, the Hertz, Mindlin and Coulomb terms on (damping and rolling may be
-    /// off: their factors are then zero) and constants inside the fused law's envelope.
+    /// no optional effect, EDEM's conventions, the Hertz, Mindlin and Coulomb terms on (damping
+    /// and rolling may be off: their factors are then zero) and constants inside the fused
+    /// law's envelope. A pair in LIGGGHTS' conventions takes the terms.
     pub fn fuse(&mut self) {
         let on = |on: bool, x: S| if on { x } else { S::ZERO };
         let f = FusedPair {
@@ -186,7 +209,9 @@ impl<S: Scalar> PairParams<S> {
             | self.cohesion.on
             | self.hysteretic.on
             | self.rolling_epsd.on
-            | self.jkr.on);
+            | self.jkr.on
+            | self.rolling_liggghts.on
+            | self.coulomb.spring_only);
         let base_on = self.hertz.on & self.tangential.on & self.coulomb.on;
         let to_fx = |x: S| crate::num::Fx::from_f64(x.to_f64());
         let in_range = to_fx(f.four_thirds_e_star).within(NORMAL_STIFFNESS_BITS)
@@ -208,10 +233,18 @@ impl<S: Scalar> PairParams<S> {
         self.tangential.on | self.hysteretic.on | self.rolling_epsd.on | self.jkr.on
     }
 
-    /// `true` when a term needs R* in [`ContactKinematics::r_star`] (EPSD rolling, JKR).
+    /// `true` when a term needs R* in [`ContactKinematics::r_star`] (EPSD rolling,
+    /// LIGGGHTS-convention rolling, JKR).
     #[inline(always)]
     pub fn needs_r_star(&self) -> bool {
-        self.rolling_epsd.on | self.jkr.on
+        self.rolling_epsd.on | self.rolling_liggghts.on | self.jkr.on
+    }
+
+    /// `true` when a term needs the relative spin [`ContactKinematics::w_rel`] and adds a
+    /// torque vector ([`ContactForce::rolling_torque`]): EPSD or LIGGGHTS-convention rolling.
+    #[inline(always)]
+    pub fn needs_relative_spin(&self) -> bool {
+        self.rolling_epsd.on | self.rolling_liggghts.on
     }
 
     /// `true` when a damping term needs √(a·m*).
@@ -238,6 +271,7 @@ impl<S: Scalar> PairParams<S> {
         self.tangential_damping.apply(k, state, &mut out);
         self.coulomb.apply(k, state, &mut out);
         self.rolling.apply(k, state, &mut out);
+        self.rolling_liggghts.apply(k, state, &mut out);
         self.rolling_epsd.apply(k, state, &mut out);
         self.cohesion.apply(k, state, &mut out);
         if self.jkr.on {

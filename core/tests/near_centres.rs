@@ -22,6 +22,7 @@ fn tangential_only() -> PairSpec {
         restitution: 0.5,
         friction: 0.0,
         rolling_friction: 0.0,
+        conventions: arachis_core::contact::Conventions::EDEM,
         terms: TermSwitches {
             hertz_normal: false,
             normal_damping: false,

@@ -19,6 +19,7 @@ fn oblique<S: Scalar>(mu: f64, e_in: f64) -> (f64, f64) {
             restitution: e_in,
             friction: mu,
             rolling_friction: 0.0,
+            conventions: arachis_core::contact::Conventions::EDEM,
             terms: TermSwitches::ALL,
         },
     )

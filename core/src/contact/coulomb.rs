@@ -3,6 +3,11 @@
 //! When the tangential force exceeds the limit it is scaled back onto the limit, and if the
 //! spring alone exceeds it (St|δt| > μs·Fn) the history is rescaled so that St|δt| = μs·Fn: the
 //! contact slides and does not store more elastic energy than friction can hold.
+//!
+//! In LIGGGHTS' convention ([`crate::contact::FrictionConvention::Liggghts`],
+//! `tangential_model_history.h`) only the spring is tested: if St|δt| > μs·Fn the force is the
+//! spring scaled onto μs·Fn, without damping, and the history is rescaled to match; otherwise
+//! the force is spring plus damping, which may exceed μs·Fn.
 
 use super::{ContactForce, ContactKinematics, ContactState, ContactTerm};
 use crate::num::Scalar;
@@ -15,6 +20,8 @@ pub struct CoulombLimit<S> {
     pub on: bool,
     /// Sliding friction coefficient μs (≥ 0).
     pub mu: S,
+    /// LIGGGHTS' test: the spring alone against the limit, no damping while sliding.
+    pub spring_only: bool,
 }
 
 impl<S: Scalar> CoulombLimit<S> {
@@ -23,6 +30,7 @@ impl<S: Scalar> CoulombLimit<S> {
         CoulombLimit {
             on: true,
             mu: S::from_f64(mu),
+            spring_only: false,
         }
     }
 }
@@ -39,6 +47,9 @@ impl<S: Scalar> ContactTerm<S> for CoulombLimit<S> {
             return;
         }
         let limit = self.mu * out.normal;
+        if self.spring_only {
+            return spring_limit(limit, state, out);
+        }
         let f2 = out.tangential.norm2();
         if f2 <= limit * limit {
             return;
@@ -54,5 +65,87 @@ impl<S: Scalar> ContactTerm<S> for CoulombLimit<S> {
         if spring > limit {
             state.delta = state.delta.scale(limit / spring);
         }
+    }
+}
+
+/// LIGGGHTS' Coulomb test: St|δt| against `limit` = μs·Fn; a sliding contact gets the spring
+/// force −St·δt scaled onto the limit (its damping dropped) and the matching history.
+#[inline(always)]
+fn spring_limit<S: Scalar>(limit: S, state: &mut ContactState<S>, out: &mut ContactForce<S>) {
+    let spring = out.tangential_stiffness * state.delta.norm();
+    if spring <= limit {
+        return;
+    }
+    let ratio = limit / spring;
+    state.delta = state.delta.scale(ratio);
+    out.tangential = state.delta.scale(-out.tangential_stiffness);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::num::{Fx, Vec3};
+
+    /// A contact with St 1 N/mm, history δt = (0.1, 0, 0) mm (spring −0.1 N along x) and a
+    /// damping part `damping_n` N along −x, under Fn 1 N. (A history of 0.1 mm keeps |δt|²
+    /// exact to 2e-8 in Q32.32, so the tolerances below are 1e-8.)
+    fn loaded(damping_n: f64) -> (ContactState<Fx>, ContactForce<Fx>) {
+        let state = ContactState {
+            delta: Vec3::new(Fx::from_f64(0.1), Fx::ZERO, Fx::ZERO),
+            ..ContactState::default()
+        };
+        let out = ContactForce {
+            normal: Fx::ONE,
+            tangential_stiffness: Fx::ONE,
+            tangential: Vec3::new(Fx::from_f64(-0.1 - damping_n), Fx::ZERO, Fx::ZERO),
+            ..ContactForce::default()
+        };
+        (state, out)
+    }
+
+    fn limit(mu: f64, spring_only: bool) -> CoulombLimit<Fx> {
+        CoulombLimit {
+            spring_only,
+            ..CoulombLimit::new(mu)
+        }
+    }
+
+    fn apply(c: CoulombLimit<Fx>, damping_n: f64) -> (f64, f64) {
+        let (mut st, mut out) = loaded(damping_n);
+        let k = crate::contact::test_kinematics(0.01, 0.1);
+        c.apply(&k, &mut st, &mut out);
+        (out.tangential.x.to_f64(), st.delta.x.to_f64())
+    }
+
+    #[test]
+    fn edem_caps_spring_plus_damping() {
+        // μs 0.15: |spring + damping| = 0.2 N > 0.15 N → force −0.15 N; the spring (0.1 N) is
+        // below the limit, so the history is kept.
+        let (f, d) = apply(limit(0.15, false), 0.1);
+        assert!((f + 0.15).abs() < 1e-8, "{f}");
+        assert!((d - 0.1).abs() < 1e-8);
+        // μs 0.05: the spring alone exceeds it: history rescaled to 0.05 mm.
+        let (f, d) = apply(limit(0.05, false), 0.1);
+        assert!((f + 0.05).abs() < 1e-8);
+        assert!((d - 0.05).abs() < 1e-8);
+    }
+
+    #[test]
+    fn liggghts_tests_the_spring_alone_and_drops_damping_when_sliding() {
+        // μs 0.15: the spring (0.1 N) sticks, so spring + damping (0.2 N) passes unbounded.
+        let (f, d) = apply(limit(0.15, true), 0.1);
+        assert!((f + 0.2).abs() < 1e-8, "{f}");
+        assert!((d - 0.1).abs() < 1e-8);
+        // μs 0.05: sliding: the spring scaled onto 0.05 N, without the 0.1 N of damping.
+        let (f, d) = apply(limit(0.05, true), 0.1);
+        assert!((f + 0.05).abs() < 1e-8, "{f}");
+        assert!((d - 0.05).abs() < 1e-8);
+        // Fn 0: no force, no history.
+        let (mut st, mut out) = loaded(0.1);
+        out.normal = Fx::ZERO;
+        let k = crate::contact::test_kinematics(0.01, 0.1);
+        limit(0.5, true).apply(&k, &mut st, &mut out);
+        assert_eq!(out.tangential, Vec3::ZERO);
+        assert_eq!(st.delta, Vec3::ZERO);
     }
 }

@@ -12,6 +12,7 @@
 //! | tangential | [`TangentialDamping`] | `tangential_damping.rs` | Ft_d = −2√(5/6)β√(St m*)·vt (eq. 6) |
 //! | tangential | [`CoulombLimit`] | `coulomb.rs` | \|Ft\| ≤ μs·Fn, history rescaled |
 //! | rolling | [`RollingCdt`] | `rolling_cdt.rs` | T = −μr·Fn·Ri·ω̂i (eq. 7, EDEM CDT) |
+//! | rolling (LIGGGHTS convention) | [`RollingCdtLiggghts`] | `rolling_cdt_liggghts.rs` | T_j = −T_i = μr·F_el·R*·ŵ_t, ŵ the unit of ωi − ωj (LIGGGHTS `rolling_friction cdt`) |
 //! | normal (optional) | [`ViscoelasticNormal`] | `viscoelastic_normal.rs` | Fn_v = −(4/3)E*·A·a·vn (Brilliantov 1996), before the clip |
 //! | normal (optional) | [`CohesionJkr`] | `cohesion_jkr.rs` | replaces Hertz by 4E*a³/(3R*), a from δ = a²/R* − √(2πΓa/E*) (JKR 1971); adhesive part below |
 //! | normal (optional) | [`HystereticNormal`] | `hysteretic_normal.rs` | unloading F_max((α−λα_max)/(α_max−λα_max))^{3/2} (after Walton & Braun 1986) |
@@ -32,12 +33,17 @@
 //! The Coulomb limit and the rolling torque both use this clipped total normal force
 //! (EDEM convention; LIGGGHTS uses the elastic part only for rolling).
 //!
+//! **Conventions.** Each pair reads rolling friction and the Coulomb limit as EDEM (the
+//! default) or as LIGGGHTS 3.8 does ([`Conventions`], `convention.rs`); the differences, term
+//! by term with their sources, are in `docs/conventions.md`.
+//!
 //! Sign conventions: body i and body j (or a wall, as j); `normal` is the unit vector from i
 //! towards j; relative velocity is v_j − v_i at the contact point, so vn = v_rel·n > 0 when
 //! separating. Forces in [`ContactForce`] act on j; i receives the opposite.
 
 pub mod cohesion_jkr;
 pub mod cohesion_sjkr;
+pub mod convention;
 pub mod coulomb;
 pub mod fused;
 pub mod hertz_normal;
@@ -46,12 +52,14 @@ pub mod hysteretic_normal;
 pub mod mindlin_tangential;
 pub mod normal_damping;
 pub mod rolling_cdt;
+pub mod rolling_cdt_liggghts;
 pub mod rolling_epsd;
 pub mod tangential_damping;
 pub mod viscoelastic_normal;
 
 pub use cohesion_jkr::CohesionJkr;
 pub use cohesion_sjkr::CohesionSjkr;
+pub use convention::{Conventions, FrictionConvention, RollingConvention, UnknownConvention};
 pub use coulomb::CoulombLimit;
 pub use hertz_normal::HertzNormal;
 pub use history::{ContactSlot, ContactState, EffectHistory, NeighbourEntry, WALL_PARTNER_FLAG};
@@ -59,6 +67,7 @@ pub use hysteretic_normal::HystereticNormal;
 pub use mindlin_tangential::MindlinTangential;
 pub use normal_damping::NormalDamping;
 pub use rolling_cdt::RollingCdt;
+pub use rolling_cdt_liggghts::RollingCdtLiggghts;
 pub use rolling_epsd::RollingEpsd;
 pub use tangential_damping::TangentialDamping;
 pub use viscoelastic_normal::ViscoelasticNormal;
@@ -98,8 +107,8 @@ pub struct ContactKinematics<S> {
     /// Effective radius R* = RiRj/(Ri+Rj), mm (wall: Ri); only set when a term needs it
     /// ([`crate::pair::PairParams::needs_r_star`]), zero otherwise.
     pub r_star: S,
-    /// Relative angular velocity ωi − ωj, rad/ms (wall: ωi); only set when the EPSD rolling
-    /// term is on, zero otherwise.
+    /// Relative angular velocity ωi − ωj, rad/ms (wall: ωi); only set when a term needs it
+    /// ([`crate::pair::PairParams::needs_relative_spin`]), zero otherwise.
     pub w_rel: Vec3<S>,
     /// Equivalent rolling inertia I_r = [1/(Ii + mi·ri²) + 1/(Ij + mj·rj²)]⁻¹, g·mm²
     /// (Ai et al. 2011 eq. (14); wall: Ii + mi·ri²), ri the lever; only set when the EPSD
@@ -121,7 +130,8 @@ pub struct ContactForce<S> {
     pub roll_i: S,
     /// Rolling-resistance torque magnitude on body j, N·mm, acting along −ω̂j.
     pub roll_j: S,
-    /// Rolling-resistance torque vector on body j, N·mm; i receives the opposite (EPSD term).
+    /// Rolling-resistance torque vector on body j, N·mm; i receives the opposite (EPSD and
+    /// LIGGGHTS-convention terms).
     pub rolling_torque: Vec3<S>,
     /// Attractive normal force, N (≥ 0), subtracted from `normal` after friction and rolling
     /// (the adhesive part of JKR cohesion).

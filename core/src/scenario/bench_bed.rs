@@ -19,7 +19,9 @@ use super::insertion::{insert_random_spheres, order_by_layers, InsertionRegion, 
 use super::materials::{GRAVITY_M_S2, POD, POD_POD, POD_STEEL, STEEL};
 use super::{ScenarioError, SplitMix64};
 use crate::body::{Storage, StorageLengths};
+use crate::material::MaterialId;
 use crate::num::Scalar;
+use crate::pair::PairSpec;
 use crate::wall::{WallGeometry, WallSpec};
 use crate::world::World;
 use core::f64::consts::PI;
@@ -61,6 +63,11 @@ pub const ORDER_LAYER_UM: i64 = 4 * SPHERE_RADIUS_UM;
 /// normally refuses impossible requests first).
 pub const MAX_ATTEMPTS_PER_SPHERE: u32 = 100_000;
 
+/// The material of the bed's spheres (the first one the bed adds).
+pub const POD_MATERIAL: MaterialId = MaterialId(0);
+/// The material of the bed's floor and cylinder (the second one).
+pub const STEEL_MATERIAL: MaterialId = MaterialId(1);
+
 /// The DESIGN §8 bench bed with `particles` spheres, inserted from `seed`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct BenchBed {
@@ -82,6 +89,19 @@ impl BenchBed {
     /// The bed of the DESIGN figure: [`DESIGN_PARTICLES`] spheres.
     pub const fn design() -> Self {
         Self::with_particles(DESIGN_PARTICLES)
+    }
+
+    /// Set the bed's two pairs, pod–pod and pod–steel, in a world built by
+    /// [`BenchBed::build_with_timestep`] (DESIGN §8's own are [`POD_POD`] and [`POD_STEEL`]):
+    /// how a calibration or a convention cross-check varies them.
+    pub fn set_pairs<S: Scalar>(
+        world: &mut World<'_, S>,
+        pod_pod: PairSpec,
+        pod_steel: PairSpec,
+    ) -> Result<(), ScenarioError> {
+        world.set_pair(POD_MATERIAL, POD_MATERIAL, pod_pod)?;
+        world.set_pair(POD_MATERIAL, STEEL_MATERIAL, pod_steel)?;
+        Ok(())
     }
 
     /// Largest particle count the insertion region accepts ([`MAX_FILL_FRACTION`]).
@@ -128,8 +148,8 @@ impl BenchBed {
         let mut world = World::new(storage)?;
         let pod = world.add_material(POD)?;
         let steel = world.add_material(STEEL)?;
-        world.set_pair(pod, pod, POD_POD)?;
-        world.set_pair(pod, steel, POD_STEEL)?;
+        debug_assert_eq!((pod, steel), (POD_MATERIAL, STEEL_MATERIAL));
+        Self::set_pairs(&mut world, POD_POD, POD_STEEL)?;
         world.set_gravity_m_s2(GRAVITY_M_S2)?;
         world.add_wall(WallSpec::fixed(
             WallGeometry::Plane {

@@ -23,6 +23,7 @@ pub const POD_POD: PairSpec = PairSpec {
     restitution: 0.335,
     friction: 0.854,
     rolling_friction: 0.346,
+    conventions: crate::contact::Conventions::EDEM,
     terms: crate::pair::TermSwitches::ALL,
 };
 
@@ -31,6 +32,7 @@ pub const POD_STEEL: PairSpec = PairSpec {
     restitution: 0.339,
     friction: 0.589,
     rolling_friction: 0.159,
+    conventions: crate::contact::Conventions::EDEM,
     terms: crate::pair::TermSwitches::ALL,
 };
 

@@ -84,6 +84,7 @@ pub const POD_CONTACT: PairSpec = PairSpec {
     restitution: 0.34,
     friction: 0.62,
     rolling_friction: 0.47,
+    conventions: crate::contact::Conventions::EDEM,
     terms: TermSwitches::ALL,
 };
 /// Stalk–stalk contact: e 0.21, μs 0.71, μr 0.58 (seed 001 Table 2, stalk–steel, the only
@@ -92,6 +93,7 @@ pub const STALK_CONTACT: PairSpec = PairSpec {
     restitution: 0.21,
     friction: 0.71,
     rolling_friction: 0.58,
+    conventions: crate::contact::Conventions::EDEM,
     terms: TermSwitches::ALL,
 };
 

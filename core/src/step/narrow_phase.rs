@@ -747,19 +747,21 @@ impl<S: Scalar> Lane<S> {
         let mut lever_j = S::ZERO;
         let mut w_rel = Vec3::ZERO;
         let mut rolling_inertia = S::ZERO;
-        if pair.rolling_epsd.on {
+        if pair.needs_relative_spin() {
             w_rel = bod_i.angular_velocity;
+        }
+        if pair.rolling_epsd.on {
             rolling_inertia = rolling_moment(bod_i, arm_i);
         }
         if !self.t.is_wall() {
             let bod_j = &sh.bodies[self.t.body_j as usize];
             arm_j = c - bod_j.position;
-            if pair.rolling_epsd.on {
+            if pair.needs_relative_spin() {
                 w_rel -= bod_j.angular_velocity;
-                if bod_j.inv_mass != S::ZERO {
-                    let ij = rolling_moment(bod_j, arm_j);
-                    rolling_inertia = rolling_inertia * ij / (rolling_inertia + ij);
-                }
+            }
+            if pair.rolling_epsd.on && bod_j.inv_mass != S::ZERO {
+                let ij = rolling_moment(bod_j, arm_j);
+                rolling_inertia = rolling_inertia * ij / (rolling_inertia + ij);
             }
             v_rel += bod_j.velocity + bod_j.angular_velocity.cross(arm_j);
             if pair.rolling.on {
@@ -823,8 +825,8 @@ impl<S: Scalar> Lane<S> {
         let f = self.normal.scale(out.normal) + out.tangential;
         let mut ti = self.arm_i.cross(f);
         let mut tj = self.arm_j.cross(f);
-        if pair.rolling_epsd.on {
-            // EPSD torque on j; i receives the opposite (i's torque is −ti).
+        if pair.needs_relative_spin() {
+            // EPSD or LIGGGHTS rolling torque on j; i receives the opposite (i's torque is −ti).
             ti += out.rolling_torque;
             tj += out.rolling_torque;
         }

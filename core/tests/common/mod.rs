@@ -73,6 +73,7 @@ pub fn normal_only(e: f64) -> PairSpec {
         restitution: e,
         friction: 0.0,
         rolling_friction: 0.0,
+        conventions: arachis_core::contact::Conventions::EDEM,
         terms: TermSwitches {
             hertz_normal: true,
             normal_damping: true,

@@ -88,6 +88,7 @@ impl PairIn {
             restitution: self.restitution.get(0.335),
             friction: self.friction.get(0.854),
             rolling_friction: self.rolling.get(0.346),
+            conventions: arachis_core::contact::Conventions::EDEM,
             terms: TermSwitches {
                 hertz_normal: bit(0),
                 normal_damping: bit(1),

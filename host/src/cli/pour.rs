@@ -14,7 +14,11 @@
 //!
 //! ```text
 //! arachis pour --particles 2000 --steps 20000 --dt 2e-5 [--f64] [--threads N] [--vtk DIR] [--frames 20]
+//!     [--rolling-convention edem|liggghts-cdt] [--friction-convention edem|liggghts] [--no-rolling-friction]
 //! ```
+//!
+//! The conventions and `--no-rolling-friction` make the LIGGGHTS cross-check of the bed one
+//! command (`scripts/cross-check-bed.sh`, `docs/conventions.md`); the JSON line names them.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -22,7 +26,7 @@ use std::time::Instant;
 use anyhow::{anyhow, ensure, Context};
 use arachis_core::prelude::*;
 use arachis_core::scenario::bench_bed::{self, BenchBed};
-use arachis_core::scenario::materials::POD;
+use arachis_core::scenario::materials::{POD, POD_POD, POD_STEEL};
 use arachis_core::scenario::measure::{bed_height_mm, com_height_mm};
 use arachis_core::timestep::{max_stable_dt_s, rayleigh_time_s, MAX_RAYLEIGH_FRACTION};
 use arachis_core::units::{ENERGY_J_TO_MJ, LENGTH_M_TO_MM, TIME_S_TO_MS};
@@ -64,6 +68,17 @@ pub struct Args {
     /// Seed of the random insertion.
     #[arg(long, default_value_t = bench_bed::DEFAULT_SEED)]
     pub seed: u64,
+    /// How both pairs read rolling friction: EDEM's (each body's own spin, the total normal
+    /// force) or LIGGGHTS' `rolling_friction cdt` (relative spin, R*, elastic force).
+    #[arg(long, value_name = "edem|liggghts-cdt", default_value = "edem")]
+    pub rolling_convention: RollingConvention,
+    /// How both pairs apply the Coulomb limit: EDEM's (spring plus damping capped) or
+    /// LIGGGHTS' `tangential history` (the spring alone tested, no damping while sliding).
+    #[arg(long, value_name = "edem|liggghts", default_value = "edem")]
+    pub friction_convention: FrictionConvention,
+    /// Rolling friction off (μr = 0 for both pairs).
+    #[arg(long)]
+    pub no_rolling_friction: bool,
 }
 
 /// The JSON line printed by `arachis pour` (SI units).
@@ -80,6 +95,9 @@ struct PourReport {
     scalar: &'static str,
     dt_s: f64,
     threads: usize,
+    rolling_convention: &'static str,
+    friction_convention: &'static str,
+    rolling_friction: bool,
 }
 
 /// Runs `arachis pour`.
@@ -168,6 +186,24 @@ fn progress_bar(steps: u64) -> ProgressBar {
     bar
 }
 
+/// DESIGN §8's pod–pod and pod–steel pairs in the requested conventions, with or without
+/// rolling friction.
+fn pairs(args: &Args) -> (PairSpec, PairSpec) {
+    let conventions = Conventions {
+        rolling: args.rolling_convention,
+        friction: args.friction_convention,
+    };
+    let adapt = |p: PairSpec| PairSpec {
+        rolling_friction: if args.no_rolling_friction {
+            0.0
+        } else {
+            p.rolling_friction
+        },
+        ..p.with_conventions(conventions)
+    };
+    (adapt(POD_POD), adapt(POD_STEEL))
+}
+
 /// Build the bed, run it, and measure it.
 fn pour<S: Scalar>(args: &Args) -> anyhow::Result<(PourReport, Vec<ParticleFrame>)> {
     let bed = BenchBed {
@@ -182,6 +218,9 @@ fn pour<S: Scalar>(args: &Args) -> anyhow::Result<(PourReport, Vec<ParticleFrame
     let mut world = bed
         .build_with_timestep(arenas.storage(), args.dt)
         .context("cannot set up the bench bed")?;
+    let (pod_pod, pod_steel) = pairs(args);
+    BenchBed::set_pairs(&mut world, pod_pod, pod_steel)
+        .context("cannot set the bench bed's pairs")?;
     bar.set_message(format!("dt {:.3e} ms, {}", args.dt * TIME_S_TO_MS, S::NAME));
     let wanted = frame_steps(args);
     let mut frames = Vec::with_capacity(wanted.len());
@@ -222,6 +261,9 @@ fn pour<S: Scalar>(args: &Args) -> anyhow::Result<(PourReport, Vec<ParticleFrame
         scalar: S::NAME,
         dt_s: args.dt,
         threads: stepper.threads(),
+        rolling_convention: args.rolling_convention.name(),
+        friction_convention: args.friction_convention.name(),
+        rolling_friction: !args.no_rolling_friction,
     };
     Ok((report, frames))
 }

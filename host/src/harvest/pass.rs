@@ -49,6 +49,7 @@ pub const POD_STEEL_CONTACT: PairSpec = PairSpec {
     restitution: 0.29,
     friction: 0.54,
     rolling_friction: 0.42,
+    conventions: arachis_core::contact::Conventions::EDEM,
     terms: TermSwitches::ALL,
 };
 /// Stalk (and stem, leaf)–steel contact, seed 001 Table 2: e 0.21, μs 0.71, μr 0.58.
@@ -56,6 +57,7 @@ pub const STALK_STEEL_CONTACT: PairSpec = PairSpec {
     restitution: 0.21,
     friction: 0.71,
     rolling_friction: 0.58,
+    conventions: arachis_core::contact::Conventions::EDEM,
     terms: TermSwitches::ALL,
 };
 

@@ -307,18 +307,7 @@ impl Rig for BenchBedRig {
         let setup = Self::setup(request)?;
         let mut arenas = OwnedStorage::<Fx>::new(setup.bed.storage_lengths());
         let mut world = setup.bed.build(arenas.storage()).map_err(core_error)?;
-        // The bed is built with DESIGN §8's pairs; its materials are read off the built
-        // world (the spheres are pod, the walls steel) to set the requested ones.
-        let (pod, steel) = match (world.spheres().first(), world.walls().first()) {
-            (Some(sphere), Some(wall)) => (MaterialId(sphere.material), MaterialId(wall.material)),
-            _ => return Err(core_error("the bed has no spheres or no walls")),
-        };
-        world
-            .set_pair(pod, pod, setup.pod_pod)
-            .map_err(core_error)?;
-        world
-            .set_pair(pod, steel, setup.pod_steel)
-            .map_err(core_error)?;
+        BenchBed::set_pairs(&mut world, setup.pod_pod, setup.pod_steel).map_err(core_error)?;
         crate::stepping::run(&mut world, setup.steps).map_err(core_error)?;
         let mut scratch = vec![0.0; world.spheres().len()];
         let bed = bed_height_mm(&world, &mut scratch)

@@ -276,6 +276,7 @@ pub fn floor_world<'a>(
         restitution,
         friction: 0.0,
         rolling_friction: 0.0,
+        conventions: arachis_core::contact::Conventions::EDEM,
         terms: TermSwitches {
             mindlin_tangential: false,
             tangential_damping: false,
