@@ -215,3 +215,48 @@ fn bad_input_is_a_clear_error_with_exit_status_2() {
     );
     assert!(!Path::new(vtk).exists(), "no output after a refusal");
 }
+
+/// The conventions of issue 18 on the command line: a pour long enough for contacts (3 000
+/// steps = 60 ms, the lowest spheres reach the floor) names them in its JSON line, and
+/// LIGGGHTS' rolling convention changes the bits, while with rolling friction off the rolling
+/// convention has nothing to act on and the bits are EDEM's.
+#[test]
+fn conventions_are_named_and_change_the_bed_only_through_rolling_friction() {
+    let long = |extra: &[&str]| {
+        let mut args = vec![
+            "pour",
+            "--particles",
+            "200",
+            "--steps",
+            "3000",
+            "--dt",
+            "2e-5",
+        ];
+        args.extend_from_slice(extra);
+        pour_with(&args)
+    };
+    let edem = long(&[]);
+    assert_eq!(edem["rolling_convention"], "edem");
+    assert_eq!(edem["friction_convention"], "edem");
+    assert_eq!(edem["rolling_friction"], true);
+    let liggghts = long(&["--rolling-convention", "liggghts-cdt"]);
+    assert_eq!(liggghts["rolling_convention"], "liggghts-cdt");
+    assert_ne!(liggghts["digest"], edem["digest"], "no contact rolled");
+    let off_edem = long(&["--no-rolling-friction"]);
+    let off_liggghts = long(&[
+        "--no-rolling-friction",
+        "--rolling-convention",
+        "liggghts-cdt",
+    ]);
+    assert_eq!(off_edem["rolling_friction"], false);
+    assert_ne!(off_edem["digest"], edem["digest"]);
+    assert_eq!(off_liggghts["digest"], off_edem["digest"]);
+    assert_refused(
+        &["pour", "--rolling-convention", "cdt"],
+        "edem, liggghts-cdt",
+    );
+    assert_refused(
+        &["pour", "--friction-convention", "liggghts-cdt"],
+        "edem, liggghts",
+    );
+}

@@ -93,9 +93,15 @@ impl Study {
         writeln!(f, "Pairs (e, μs, μr; '-' = varied, see below):")?;
         for (name, pair) in &s.pairs {
             let show = |v: Option<f64>| v.map_or("-".to_owned(), |x| x.to_string());
+            let c = pair.conventions();
+            let conventions = if c.is_edem() {
+                String::new()
+            } else {
+                format!(" (rolling {}, friction {})", c.rolling, c.friction)
+            };
             writeln!(
                 f,
-                "  {name}: {}, {}, {}",
+                "  {name}: {}, {}, {}{conventions}",
                 show(pair.restitution),
                 show(pair.static_friction),
                 show(pair.rolling_friction)

@@ -8,6 +8,7 @@
 
 use std::collections::BTreeMap;
 
+use arachis_core::contact::{Conventions, FrictionConvention, RollingConvention};
 use serde::Serialize;
 
 use super::experiment::Experiment;
@@ -40,6 +41,24 @@ pub struct RunPair {
     pub static_friction: f64,
     /// Coefficient of rolling friction.
     pub rolling_friction: f64,
+    /// The pair's conventions. Written only when one is not EDEM's, so the spec of a run in
+    /// EDEM's conventions, and so its hash and cache entry, is the same as before conventions
+    /// existed.
+    #[serde(flatten, serialize_with = "conventions_if_not_edem")]
+    pub conventions: Conventions,
+}
+
+/// `rolling_convention` and `friction_convention` by name, each only when not EDEM's.
+fn conventions_if_not_edem<S: serde::Serializer>(c: &Conventions, s: S) -> Result<S::Ok, S::Error> {
+    use serde::ser::SerializeMap;
+    let mut map = s.serialize_map(None)?;
+    if c.rolling != RollingConvention::Edem {
+        map.serialize_entry("rolling_convention", c.rolling.name())?;
+    }
+    if c.friction != FrictionConvention::Edem {
+        map.serialize_entry("friction_convention", c.friction.name())?;
+    }
+    map.end()
 }
 
 /// Pod geometry of one run.
@@ -157,6 +176,7 @@ impl PodWorld<'_> {
                     restitution: get("restitution")?,
                     static_friction: get("static_friction")?,
                     rolling_friction: get("rolling_friction")?,
+                    conventions: self.pairs[name].conventions(),
                 },
             );
         }

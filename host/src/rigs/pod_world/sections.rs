@@ -4,7 +4,11 @@
 //! unit-suffixed and in SI (or mm for pod geometry, as the seeds print it); every table
 //! denies unknown keys, so a misspelt key is an error rather than an ignored setting.
 
-use serde::{Deserialize, Serialize};
+use std::fmt::Display;
+use std::str::FromStr;
+
+use arachis_core::contact::{Conventions, FrictionConvention, RollingConvention};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 /// `[materials.<name>]`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -39,18 +43,67 @@ pub struct Pair {
     /// Coefficient of static friction μs, dimensionless.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub static_friction: Option<f64>,
-    /// Coefficient of rolling friction μr, dimensionless (CDT form, seed 000 eq. (7)).
+    /// Coefficient of rolling friction μr, dimensionless (CDT form; its meaning depends on
+    /// `rolling_convention`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rolling_friction: Option<f64>,
+    /// How μr is read: `edem` (the default; T_i = −μr·Fn·L_i·ω̂_i, seed 000 eq. (7)) or
+    /// `liggghts-cdt` (LIGGGHTS' `rolling_friction cdt`: relative spin, R*, elastic force).
+    /// `docs/conventions.md` compares them and says when a μr converts.
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "by_name",
+        serialize_with = "name_of"
+    )]
+    pub rolling_convention: Option<RollingConvention>,
+    /// How the Coulomb limit applies: `edem` (the default; spring plus damping capped at
+    /// μs·Fn) or `liggghts` (LIGGGHTS' `tangential history`: the spring alone tested).
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "by_name",
+        serialize_with = "name_of"
+    )]
+    pub friction_convention: Option<FrictionConvention>,
     /// Where the numbers are printed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub source: Option<String>,
+}
+
+/// A convention read by its name, with the accepted names in the error.
+fn by_name<'de, D, T>(d: D) -> Result<Option<T>, D::Error>
+where
+    D: Deserializer<'de>,
+    T: FromStr,
+    T::Err: Display,
+{
+    let name = String::deserialize(d)?;
+    name.parse()
+        .map(Some)
+        .map_err(|e| serde::de::Error::custom(format!("'{name}': {e}")))
+}
+
+/// A convention written by its name.
+fn name_of<S: Serializer, T: Display>(value: &Option<T>, s: S) -> Result<S::Ok, S::Error> {
+    match value {
+        Some(v) => s.collect_str(v),
+        None => s.serialize_none(),
+    }
 }
 
 /// The contact properties of a pair, in file order.
 pub const PAIR_PROPERTIES: [&str; 3] = ["restitution", "static_friction", "rolling_friction"];
 
 impl Pair {
+    /// The pair's conventions (EDEM's where the study names none).
+    pub fn conventions(&self) -> Conventions {
+        Conventions {
+            rolling: self.rolling_convention.unwrap_or_default(),
+            friction: self.friction_convention.unwrap_or_default(),
+        }
+    }
+
     /// The value of property `name` (one of [`PAIR_PROPERTIES`]).
     pub fn property(&self, name: &str) -> Option<f64> {
         match name {

@@ -91,11 +91,10 @@ fn pair(
         .get(&format!("{a}-{b}"))
         .or_else(|| spec.pairs.get(&format!("{b}-{a}")))
         .ok_or_else(|| study_error(experiment, format!("no pair '{a}-{b}'")))?;
-    Ok(PairSpec::hertz_mindlin(
-        p.restitution,
-        p.static_friction,
-        p.rolling_friction,
-    ))
+    Ok(
+        PairSpec::hertz_mindlin(p.restitution, p.static_friction, p.rolling_friction)
+            .with_conventions(p.conventions),
+    )
 }
 
 impl RunInputs {
