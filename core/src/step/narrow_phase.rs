@@ -643,7 +643,10 @@ impl<S: Scalar> Touch<S> {
         } else {
             si.radius * sj.radius / (si.radius + sj.radius)
         };
-        let m_star = if bi.mass == bj.mass {
+        // A kinematic partner (inverse mass 0) has the mass of its material but counts as
+        // infinitely heavy: m* is then the other body's mass, so the shortcut needs equal
+        // inverse masses too (cross-check finding: an impact on a fixed equal sphere).
+        let m_star = if bi.mass == bj.mass && bi.inv_mass == bj.inv_mass {
             bi.mass * S::HALF
         } else {
             S::ONE / (bi.inv_mass + bj.inv_mass)
@@ -719,7 +722,7 @@ impl<S: Scalar> Lane<S> {
                 &sh.bodies[self.t.body_i as usize],
                 &sh.bodies[self.t.body_j as usize],
             );
-            if bi.mass == bj.mass {
+            if bi.mass == bj.mass && bi.inv_mass == bj.inv_mass {
                 bi.mass * S::HALF
             } else {
                 S::ONE / (bi.inv_mass + bj.inv_mass)
