@@ -35,13 +35,7 @@ while [ $# -gt 0 ]; do
     esac
 done
 
-if ! command -v liggghts >/dev/null 2>&1; then
-    echo "installing LIGGGHTS 3.8 from the Debian archive" >&2
-    sudo_cmd=""
-    [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
-    $sudo_cmd apt-get update -qq >&2
-    DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq liggghts >&2
-fi
+scripts/install-liggghts.sh
 
 cargo build --release -q -p arachis >&2
 arachis=target/release/arachis
