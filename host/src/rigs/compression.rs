@@ -75,7 +75,7 @@ pub fn run(
     _seed: u64,
     options: &RunOptions,
 ) -> Result<Observation, ExperimentError> {
-    let template = inputs.template(inputs.typical_kind());
+    let template = inputs.template(inputs.typical_class());
     let e = |s| setup_error(EXPERIMENT, s);
     let mut arena = Arena::new(1, template.spheres.len());
     let mut w = arena.world(EXPERIMENT)?;

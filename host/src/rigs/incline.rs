@@ -79,7 +79,7 @@ pub fn run(
     _seed: u64,
     options: &RunOptions,
 ) -> Result<Observation, ExperimentError> {
-    let kind = inputs.typical_kind();
+    let kind = inputs.typical_class();
     let template = inputs.template(kind);
     let mut arena = Arena::new(1, template.spheres.len());
     let mut w = arena.world(EXPERIMENT)?;
@@ -161,7 +161,7 @@ pub fn run(
         details: ObservationDetails::InclineSlide(InclineDetails {
             static_friction: angle.to_radians().tan(),
             dt_s,
-            pod_kind: kind.key(),
+            pod_kind: template.kind.map_or("sphere", |k| k.key()),
         }),
     })
 }

@@ -108,7 +108,7 @@ pub fn run(
     let repose = &inputs.simulation.repose;
     let n = inputs.mode.pods as usize;
     let mut rng = SplitMix64::new(seed);
-    let kinds = inputs.shuffled_kinds(n, &mut rng);
+    let kinds = inputs.shuffled_classes(n, &mut rng);
     let sphere_total: usize = kinds
         .iter()
         .map(|&k| inputs.template(k).spheres.len())
@@ -197,7 +197,7 @@ pub fn run(
     let mut frames = FrameRecorder::new(options.vtk_dir.as_deref());
     frames.record(&w);
 
-    let pod_mass_kg = inputs.template(inputs.typical_kind()).mass.mass_kg;
+    let pod_mass_kg = inputs.template(inputs.typical_class()).mass.mass_kg;
     let at_rest_j = n as f64 * 0.5 * pod_mass_kg * SETTLED_SPEED_M_S * SETTLED_SPEED_M_S;
     let chunk = steps_for(&w, CHECK_INTERVAL_S);
 

@@ -45,7 +45,8 @@ pub struct MassProperties {
     pub principal_axes: [[f64; 3]; 3],
 }
 
-const IDENTITY_AXES: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+/// The frame's own axes (a sphere's principal axes, or a symmetric shape's).
+pub const IDENTITY_AXES: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
 /// Mass properties of the voxels flagged `inside` in `grid`, at density `density_kg_m3`.
 pub fn voxel_mass_properties(

@@ -47,12 +47,13 @@ pub use filling_report::{
     filling_report, voxelize_spheres, FillingReport, DEFAULT_REPORT_RESOLUTION,
 };
 pub use mass_properties::{
-    ellipsoid_mass_properties, voxel_mass_properties, MassProperties, POD_DENSITY_KG_M3,
+    ellipsoid_mass_properties, voxel_mass_properties, MassProperties, IDENTITY_AXES,
+    POD_DENSITY_KG_M3,
 };
 pub use picture::{fillings_svg, write_fillings_svg, PicturePanel};
 pub use pod_mesh::pod_triangles;
 pub use pod_shape::{PodKind, PodShape};
-pub use shape_mix::ShapeMix;
+pub use shape_mix::{apportion, ShapeMix};
 pub use solid::Solid;
 pub use sphere_fill::{
     fill_with_spheres, FillOptions, FillTarget, Sphere, SphereFilling, DEFAULT_FILL_RESOLUTION,

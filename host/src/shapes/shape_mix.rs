@@ -68,22 +68,8 @@ impl ShapeMix {
     /// Pod counts of each kind for `n` pods by largest remainders (Hamilton's method;
     /// ties go to the earlier kind), so the counts sum to `n` exactly.
     pub fn apportion(&self, n: usize) -> [usize; 3] {
-        let quotas = self.fractions.map(|f| f * n as f64);
-        let mut counts = quotas.map(|q| q.floor() as usize);
-        let mut left = n.saturating_sub(counts.iter().sum::<usize>());
-        let mut order = [0usize, 1, 2];
-        order.sort_by(|&i, &j| {
-            let (ri, rj) = (quotas[i] - quotas[i].floor(), quotas[j] - quotas[j].floor());
-            rj.total_cmp(&ri).then(i.cmp(&j))
-        });
-        for &i in order.iter().cycle() {
-            if left == 0 {
-                break;
-            }
-            counts[i] += 1;
-            left -= 1;
-        }
-        counts
+        let counts = apportion(&self.fractions, n);
+        [counts[0], counts[1], counts[2]]
     }
 
     /// The kind drawn by a uniform number `u` in [0, 1) (inverse of the cumulative mix).
@@ -102,6 +88,27 @@ impl ShapeMix {
             .find(|k| self.fraction(**k) > 0.0)
             .unwrap_or(&PodKind::Normal)
     }
+}
+
+/// `n` items split by `fractions` (summing to 1) by largest remainders: each gets the floor
+/// of its quota, and the ones left go to the largest remainders, ties to the first.
+pub fn apportion(fractions: &[f64], n: usize) -> Vec<usize> {
+    let quotas: Vec<f64> = fractions.iter().map(|f| f * n as f64).collect();
+    let mut counts: Vec<usize> = quotas.iter().map(|q| q.floor() as usize).collect();
+    let mut left = n.saturating_sub(counts.iter().sum::<usize>());
+    let mut order: Vec<usize> = (0..quotas.len()).collect();
+    order.sort_by(|&i, &j| {
+        let (ri, rj) = (quotas[i] - quotas[i].floor(), quotas[j] - quotas[j].floor());
+        rj.total_cmp(&ri).then(i.cmp(&j))
+    });
+    for &i in order.iter().cycle() {
+        if left == 0 {
+            break;
+        }
+        counts[i] += 1;
+        left -= 1;
+    }
+    counts
 }
 
 #[cfg(test)]

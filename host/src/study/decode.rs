@@ -27,6 +27,8 @@ pub(crate) struct Layout {
     /// A pod world (`[materials]`, `[pods]` or `[pairs]`), also when nothing else marks the
     /// file (a study of other rigs says what it measures in `[[measurements]]`).
     pub pods: bool,
+    /// Sphere particles (`[spheres]`), which stand in for `[pods]`.
+    pub spheres: bool,
     /// The pull-off tensile test (`[rig]`, `[measurement]` or `[factors]`).
     pub pull_off: bool,
     /// `[[measurements]]` (then a pull-off study needs no `[measurement]`).
@@ -41,10 +43,12 @@ impl Layout {
         let pull_off = has(&["rig", "measurement", "factors"]);
         let diagnosis = has(&["diagnosis"]);
         let measurements = has(&["measurements"]);
-        let pods = has(&["materials", "pods", "pairs"])
+        let spheres = has(&["spheres"]);
+        let pods = has(&["materials", "pods", "spheres", "pairs"])
             || !(pull_off || diagnosis || measurements || has(&["parameters"]));
         Self {
             pods,
+            spheres,
             pull_off,
             measurements,
             diagnosis,
@@ -53,7 +57,7 @@ impl Layout {
 
     /// Whether the file must have section `key`.
     fn requires(&self, key: &str) -> bool {
-        (self.pods && POD_SECTIONS.contains(&key))
+        (self.pods && POD_SECTIONS.contains(&key) && !(key == "pods" && self.spheres))
             || (self.pull_off
                 && PULL_OFF_SECTIONS.contains(&key)
                 && !(key == "measurement" && self.measurements))
@@ -69,6 +73,7 @@ pub(crate) fn decode_file(src: &Source<'_>) -> Result<StudyFile, Vec<StudyError>
         study: whole(src, root, "study", need("study"), &mut errors),
         materials: map(src, root, "materials", need("materials"), &mut errors).unwrap_or_default(),
         pods: whole(src, root, "pods", need("pods"), &mut errors),
+        spheres: whole(src, root, "spheres", false, &mut errors),
         pairs: map(src, root, "pairs", need("pairs"), &mut errors).unwrap_or_default(),
         rig: whole(src, root, "rig", need("rig"), &mut errors),
         measurements: array(src, root, "measurements", need("measurements"), &mut errors)

@@ -7,8 +7,8 @@
 //! - `[study]` ([`StudyHeader`]): name, description, citation of the source paper (a
 //!   `[diagnosis]` study names itself there instead);
 //! - pods ([`crate::rigs::pod_world`]): `[materials.<name>]` ([`Material`]), `[pods]`
-//!   ([`Pods`]), `[pairs."<a>-<b>"]` ([`Pair`]), with `[plan.modes]` and
-//!   `[plan.simulation]`;
+//!   ([`Pods`]) or `[spheres]` ([`Spheres`]), `[pairs."<a>-<b>"]` ([`Pair`]), with
+//!   `[plan.modes]` and `[plan.simulation]`;
 //! - the pull-off tensile test: `[rig]` ([`PullOffRigSection`]);
 //! - measurements: `[[measurements]]` ([`Measurement`]: bench results with replicates at a
 //!   condition), or the pull-off study's one `[measurement]` ([`MeasuredForce`]), or the
@@ -29,7 +29,7 @@ use super::plan::Plan;
 use super::pull_off::{FactorLevels, MeasuredForce, PullOffRigSection};
 pub use crate::rigs::pod_world::parameters::ParameterRange;
 pub use crate::rigs::pod_world::sections::{
-    Material, Pair, Pods, ShapeMix, StlPaths, PAIR_PROPERTIES,
+    Material, Pair, Pods, ShapeMix, SizeClass, Spheres, StlPaths, PAIR_PROPERTIES,
 };
 
 /// The whole file. Absent sections are left out when it is written back.
@@ -45,6 +45,9 @@ pub struct StudyFile {
     /// `[pods]`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pods: Option<Pods>,
+    /// `[spheres]`: sphere particles in place of `[pods]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spheres: Option<Spheres>,
     /// `[pairs."<a>-<b>"]`, by pair name.
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub pairs: BTreeMap<String, Pair>,
@@ -71,11 +74,19 @@ pub struct StudyFile {
     pub diagnosis: Option<DiagnosisSection>,
 }
 
+impl StudyFile {
+    /// `true` when the study describes particles for the pod rigs: `[pods]` or `[spheres]`.
+    pub fn has_particles(&self) -> bool {
+        self.pods.is_some() || self.spheres.is_some()
+    }
+}
+
 /// The top-level sections, in the order a study file is written.
-pub const SECTIONS: [&str; 11] = [
+pub const SECTIONS: [&str; 12] = [
     "study",
     "materials",
     "pods",
+    "spheres",
     "pairs",
     "rig",
     "measurements",

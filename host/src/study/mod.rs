@@ -57,7 +57,7 @@ use crate::calibration::{Condition, ParameterValues, Rig, RigError};
 use crate::plant::topology::BondSet;
 use crate::rigs::kind::{RigOptions, Worlds};
 use crate::rigs::pod_world::{
-    ExperimentError, ModeName, Observation, ParameterSpec as Spec, PodWorld, RunOptions,
+    ExperimentError, ModeName, Observation, ParameterSpec as Spec, Particles, PodWorld, RunOptions,
 };
 use crate::rigs::{catalogue, pod_bench};
 use pull_off::ReadFile;
@@ -187,7 +187,11 @@ impl Study {
         let plan = f.plan.as_ref()?;
         Some(PodWorld {
             materials: &f.materials,
-            pods: f.pods.as_ref()?,
+            particles: match (&f.pods, &f.spheres) {
+                (Some(pods), _) => Particles::Pods(pods),
+                (None, Some(spheres)) => Particles::Spheres(spheres),
+                (None, None) => return None,
+            },
             pairs: &f.pairs,
             parameters: &f.parameters,
             modes: &plan.modes,

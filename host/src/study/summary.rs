@@ -6,7 +6,7 @@ use std::fmt;
 
 use super::plan::{ModelOrder, Plan};
 use super::Study;
-use crate::rigs::pod_world::Pods;
+use crate::rigs::pod_world::{Particles, Pods};
 
 /// Significant digits of derived numbers in the summary.
 const SUMMARY_DIGITS: i32 = 4;
@@ -33,8 +33,8 @@ impl Study {
 impl fmt::Display for Study {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let s = self.file();
-        if let (Some(pods), Some(plan)) = (&s.pods, &s.plan) {
-            self.pod_summary(f, pods, plan)?;
+        if let (Some(world), Some(plan)) = (self.pod_world(), &s.plan) {
+            self.pod_summary(f, world.particles, plan)?;
         }
         if let Some(plan) = &s.plan {
             if s.rig.is_some() {
@@ -44,7 +44,7 @@ impl fmt::Display for Study {
         if s.diagnosis.is_some() {
             self.diagnosis_summary(f)?;
         }
-        if s.pods.is_none() && s.rig.is_none() && s.diagnosis.is_none() {
+        if s.pods.is_none() && s.spheres.is_none() && s.rig.is_none() && s.diagnosis.is_none() {
             self.rig_summary(f)?;
         }
         Ok(())
@@ -62,20 +62,8 @@ impl Study {
         Ok(())
     }
 
-    fn pod_summary(&self, f: &mut fmt::Formatter<'_>, p: &Pods, plan: &Plan) -> fmt::Result {
-        let s = self.file();
-        self.header(f)?;
-        writeln!(f, "Materials:")?;
-        for (name, m) in &s.materials {
-            writeln!(
-                f,
-                "  {name}: ρ {} kg/m³, ν {}, G {} MPa (E = 2G(1 + ν) = {} MPa)",
-                m.density_kg_m3,
-                m.poisson,
-                m.shear_modulus_pa / PA_PER_MPA,
-                significant(m.youngs_modulus_pa() / PA_PER_MPA)
-            )?;
-        }
+    /// The `[pods]` line and the scanned shapes.
+    fn pods_line(&self, f: &mut fmt::Formatter<'_>, p: &Pods) -> fmt::Result {
         writeln!(
             f,
             "Pods ({}): {} × {} × {} mm; mix normal {}, cocoon {}, single-grain {}",
@@ -89,6 +77,39 @@ impl Study {
         )?;
         for (shape, path) in self.stl_paths() {
             writeln!(f, "  {shape} scan: {}", path.display())?;
+        }
+        Ok(())
+    }
+
+    fn pod_summary(
+        &self,
+        f: &mut fmt::Formatter<'_>,
+        particles: Particles<'_>,
+        plan: &Plan,
+    ) -> fmt::Result {
+        let s = self.file();
+        self.header(f)?;
+        writeln!(f, "Materials:")?;
+        for (name, m) in &s.materials {
+            writeln!(
+                f,
+                "  {name}: ρ {} kg/m³, ν {}, G {} MPa (E = 2G(1 + ν) = {} MPa)",
+                m.density_kg_m3,
+                m.poisson,
+                m.shear_modulus_pa / PA_PER_MPA,
+                significant(m.youngs_modulus_pa() / PA_PER_MPA)
+            )?;
+        }
+        match particles {
+            Particles::Pods(p) => self.pods_line(f, p)?,
+            Particles::Spheres(sp) => {
+                let sizes: Vec<String> = sp
+                    .classes()
+                    .iter()
+                    .map(|c| format!("R {} mm × {}", c.radius_mm, c.fraction))
+                    .collect();
+                writeln!(f, "Spheres ({}): {}", sp.material, sizes.join(", "))?;
+            }
         }
         writeln!(f, "Pairs (e, μs, μr; '-' = varied, see below):")?;
         for (name, pair) in &s.pairs {

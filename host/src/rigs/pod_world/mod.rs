@@ -30,7 +30,7 @@ pub use experiment::Experiment;
 pub use observation::{Observation, ObservationDetails, RunOptions};
 pub use parameters::{ParameterRange, ParameterSpec, REGISTRY};
 pub use run_spec::RunSpec;
-pub use sections::{Material, Pair, Pods};
+pub use sections::{Material, Pair, Particles, Pods, Spheres};
 pub use settings::{Mode, Simulation};
 pub use templates::TemplateCache;
 pub use values::{check_values, parse_assignment, ModeName, ParameterValues};
@@ -43,8 +43,8 @@ use parameters::Owner;
 pub struct PodWorld<'a> {
     /// `[materials.<name>]`.
     pub materials: &'a BTreeMap<String, Material>,
-    /// `[pods]`.
-    pub pods: &'a Pods,
+    /// `[pods]` or `[spheres]`.
+    pub particles: Particles<'a>,
     /// `[pairs."<a>-<b>"]`.
     pub pairs: &'a BTreeMap<String, Pair>,
     /// `[parameters."<name>"]`: what a calibration varies and over which ranges.
@@ -112,8 +112,10 @@ impl<'a> PodWorld<'a> {
 
     /// Scanned STL paths, resolved against the study file's folder.
     pub fn stl_paths(&self) -> Vec<(&'static str, PathBuf)> {
-        self.pods
-            .stl
+        let Particles::Pods(pods) = self.particles else {
+            return Vec::new();
+        };
+        pods.stl
             .entries()
             .into_iter()
             .map(|(shape, p)| (shape, self.dir.join(p)))

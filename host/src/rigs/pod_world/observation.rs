@@ -97,7 +97,7 @@ pub struct InclineDetails {
     pub static_friction: f64,
     /// Time step, s.
     pub dt_s: f64,
-    /// Pod shape used.
+    /// Pod shape used (`sphere` for a sphere particle).
     pub pod_kind: &'static str,
 }
 

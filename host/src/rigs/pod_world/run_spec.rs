@@ -13,7 +13,7 @@ use serde::Serialize;
 
 use super::experiment::Experiment;
 use super::parameters::{for_property, lookup, Owner};
-use super::sections::ShapeMix;
+use super::sections::{Particles, ShapeMix, SizeClass};
 use super::settings::{Mode, Simulation};
 use super::PodWorld;
 use crate::calibration::spec_hash::{canonical_json, fnv1a_64, SpecHash};
@@ -79,6 +79,26 @@ pub struct RunPods {
     pub stl: BTreeMap<String, RunStl>,
 }
 
+/// Sphere particles of one run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunSpheres {
+    /// Material name.
+    pub material: String,
+    /// Size classes (radius, mm; fraction by number).
+    pub sizes: Vec<SizeClass>,
+}
+
+impl RunSpec {
+    /// The particles' material name.
+    pub fn particle_material(&self) -> &str {
+        match (&self.pods, &self.spheres) {
+            (Some(p), _) => &p.material,
+            (None, Some(s)) => &s.material,
+            (None, None) => "",
+        }
+    }
+}
+
 /// A scanned shape in a run spec.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RunStl {
@@ -101,8 +121,12 @@ pub struct RunSpec {
     pub materials: BTreeMap<String, RunMaterial>,
     /// Pair values after the run's parameter values.
     pub pairs: BTreeMap<String, RunPair>,
-    /// Pod geometry.
-    pub pods: RunPods,
+    /// Pod geometry (a pod study).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pods: Option<RunPods>,
+    /// Sphere sizes (a sphere study).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spheres: Option<RunSpheres>,
     /// Mode name and sizes.
     pub mode: Mode,
     /// Simulation settings, with condition overrides applied.
@@ -197,21 +221,34 @@ impl PodWorld<'_> {
         if let Some(speed) = condition.get("lift_speed_m_s") {
             simulation.repose.lift_speed_m_s = *speed;
         }
-        let pods = self.pods;
+        let (pods, spheres) = match self.particles {
+            Particles::Pods(pods) => (
+                Some(RunPods {
+                    material: pods.material.clone(),
+                    length_mm: pods.length_mm,
+                    width_mm: pods.width_mm,
+                    thickness_mm: pods.thickness_mm,
+                    shape_mix: pods.shape_mix.clone(),
+                    stl: self.run_stl()?,
+                }),
+                None,
+            ),
+            Particles::Spheres(spheres) => (
+                None,
+                Some(RunSpheres {
+                    material: spheres.material.clone(),
+                    sizes: spheres.classes(),
+                }),
+            ),
+        };
         Ok(RunSpec {
             spec_format: SPEC_FORMAT_VERSION,
             experiment,
             condition: condition.clone(),
             materials,
             pairs,
-            pods: RunPods {
-                material: pods.material.clone(),
-                length_mm: pods.length_mm,
-                width_mm: pods.width_mm,
-                thickness_mm: pods.thickness_mm,
-                shape_mix: pods.shape_mix.clone(),
-                stl: self.run_stl()?,
-            },
+            pods,
+            spheres,
             mode: mode_settings,
             simulation,
         })
@@ -222,7 +259,10 @@ impl PodWorld<'_> {
     /// Each scanned shape's path and content hash (the files were checked at load; one
     /// that has since vanished is an error here).
     fn run_stl(&self) -> Result<BTreeMap<String, RunStl>, String> {
-        let written = self.pods.stl.entries();
+        let written = match self.particles {
+            Particles::Pods(pods) => pods.stl.entries(),
+            Particles::Spheres(_) => Vec::new(),
+        };
         self.stl_paths()
             .into_iter()
             .zip(written)

@@ -1,5 +1,6 @@
 //! The study sections that describe a pod world: `[materials.<name>]` ([`Material`]),
-//! `[pods]` ([`Pods`]: the particle material, size, shape mix, optional scanned STLs) and
+//! `[pods]` ([`Pods`]: the particle material, size, shape mix, optional scanned STLs) or
+//! `[spheres]` ([`Spheres`]: sphere particles of one radius or a size distribution) and
 //! `[pairs."<a>-<b>"]` ([`Pair`]: contact properties of two materials). Every key is
 //! unit-suffixed and in SI (or mm for pod geometry, as the seeds print it); every table
 //! denies unknown keys, so a misspelt key is an error rather than an ignored setting.
@@ -133,6 +134,82 @@ pub struct Pods {
     /// generated from L × W × H.
     #[serde(default, skip_serializing_if = "StlPaths::is_empty")]
     pub stl: StlPaths,
+}
+
+/// `[spheres]`: sphere particles instead of pods (grain, seeds, glass beads, or a
+/// cross-check against a code without clumps). Either one radius (`radius_mm`) or a discrete
+/// size distribution (`[[spheres.sizes]]`, each a radius and its fraction by number); every
+/// pod rig (repose by cylinder lifting, incline, compression, ...) runs on them.
+///
+/// ```toml
+/// [spheres]
+/// material = "pod"
+/// radius_mm = 4.0
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Spheres {
+    /// The `[materials]` entry the spheres are made of.
+    pub material: String,
+    /// Radius of every sphere, mm (when the spheres are of one size).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radius_mm: Option<f64>,
+    /// Size classes by number (when the spheres are of several sizes); fractions sum to 1.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sizes: Vec<SizeClass>,
+    /// Where the numbers come from.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub source: Option<String>,
+}
+
+/// One size class of `[[spheres.sizes]]`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SizeClass {
+    /// Sphere radius, mm.
+    pub radius_mm: f64,
+    /// Fraction of the spheres (by number) of this radius, in [0, 1].
+    pub fraction: f64,
+}
+
+impl Spheres {
+    /// The size classes: the one radius with fraction 1, or `sizes` in file order.
+    pub fn classes(&self) -> Vec<SizeClass> {
+        match self.radius_mm {
+            Some(radius_mm) => vec![SizeClass {
+                radius_mm,
+                fraction: 1.0,
+            }],
+            None => self.sizes.clone(),
+        }
+    }
+}
+
+/// The particles of a pod world: pods or spheres.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Particles<'a> {
+    /// `[pods]`.
+    Pods(&'a Pods),
+    /// `[spheres]`.
+    Spheres(&'a Spheres),
+}
+
+impl Particles<'_> {
+    /// The `[materials]` entry the particles are made of.
+    pub fn material(&self) -> &str {
+        match self {
+            Particles::Pods(p) => &p.material,
+            Particles::Spheres(s) => &s.material,
+        }
+    }
+
+    /// The study section that describes them.
+    pub fn section(&self) -> &'static str {
+        match self {
+            Particles::Pods(_) => "pods",
+            Particles::Spheres(_) => "spheres",
+        }
+    }
 }
 
 /// `[pods.shape_mix]`.

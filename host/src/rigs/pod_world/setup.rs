@@ -20,7 +20,7 @@ use super::templates::{PodTemplate, TemplateCache, TemplateKey, TemplateSet};
 use super::values::{check_values, ModeName, ParameterValues};
 use super::{Experiment, PodWorld};
 use crate::arena::OwnedStorage;
-use crate::shapes::{PodKind, ShapeMix};
+use crate::shapes::{apportion, PodKind, ShapeMix};
 
 /// m per mm.
 pub const M_PER_MM: f64 = 1e-3;
@@ -50,9 +50,9 @@ pub struct RunInputs {
     pub full_pods: Option<u32>,
     /// Simulation settings (time-step fraction, gravity, repose rig).
     pub simulation: Simulation,
-    /// The shape mix.
-    pub mix: ShapeMix,
-    /// Filled pod templates.
+    /// Fraction by number of each particle class ([`RunInputs::template`]).
+    pub fractions: Vec<f64>,
+    /// Filled pod templates, or the spheres of each size class.
     pub templates: TemplateSet,
 }
 
@@ -117,7 +117,7 @@ impl RunInputs {
         let spec = world
             .run_spec(experiment, condition, values, mode.as_str())
             .map_err(|reason| study_error(experiment, reason))?;
-        let pod_name = spec.pods.material.clone();
+        let pod_name = spec.particle_material().to_owned();
         let wall_name = spec.simulation.wall_material.clone();
         let pod = material(&spec, &pod_name, experiment)?;
         let pod_poisson = if pod.poisson >= ISOTROPIC_POISSON_LIMIT {
@@ -128,22 +128,39 @@ impl RunInputs {
         let wall = material(&spec, &wall_name, experiment)?;
         let pod_pod = pair(&spec, &pod_name, &pod_name, experiment)?;
         let pod_wall = pair(&spec, &pod_name, &wall_name, experiment)?;
-        let m = &spec.pods.shape_mix;
-        let mix = ShapeMix::new([m.normal, m.cocoon, m.single_grain])?;
-        let key = TemplateKey {
-            dims_bits: [
-                spec.pods.length_mm,
-                spec.pods.width_mm,
-                spec.pods.thickness_mm,
-                pod.density_kg_m3,
-            ]
-            .map(f64::to_bits),
-            spheres_per_pod: spec.mode.spheres_per_pod,
-            stl: world
-                .stl_paths()
-                .into_iter()
-                .filter_map(|(k, p)| PodKind::from_key(k).map(|k| (k, p)))
-                .collect(),
+        let (key, fractions) = match (&spec.pods, &spec.spheres) {
+            (Some(pods), _) => {
+                let m = &pods.shape_mix;
+                let mix = ShapeMix::new([m.normal, m.cocoon, m.single_grain])?;
+                let key = TemplateKey::Pods {
+                    dims_bits: [
+                        pods.length_mm,
+                        pods.width_mm,
+                        pods.thickness_mm,
+                        pod.density_kg_m3,
+                    ]
+                    .map(f64::to_bits),
+                    spheres_per_pod: spec.mode.spheres_per_pod,
+                    stl: world
+                        .stl_paths()
+                        .into_iter()
+                        .filter_map(|(k, p)| PodKind::from_key(k).map(|k| (k, p)))
+                        .collect(),
+                };
+                (key, PodKind::ALL.map(|k| mix.fraction(k)).to_vec())
+            }
+            (None, Some(spheres)) => {
+                let key = TemplateKey::Spheres {
+                    radii_bits: spheres
+                        .sizes
+                        .iter()
+                        .map(|c| c.radius_mm.to_bits())
+                        .collect(),
+                    density_bits: pod.density_kg_m3.to_bits(),
+                };
+                (key, spheres.sizes.iter().map(|c| c.fraction).collect())
+            }
+            (None, None) => return Err(study_error(experiment, "the study has no particles")),
         };
         let templates = cache.get(&key)?;
         Ok(RunInputs {
@@ -157,20 +174,22 @@ impl RunInputs {
             wall,
             pod_pod,
             pod_wall,
-            mix,
+            fractions,
             templates,
         })
     }
 
-    /// The template of `kind`.
-    pub fn template(&self, kind: PodKind) -> &PodTemplate {
-        &self.templates[kind as usize]
+    /// The template of particle class `class` (a pod shape, `PodKind as usize`, or a sphere
+    /// size class).
+    pub fn template(&self, class: usize) -> &PodTemplate {
+        &self.templates[class]
     }
 
-    /// The most common shape of the mix (the single pod of the one-pod rigs).
-    pub fn typical_kind(&self) -> PodKind {
-        PodKind::ALL.into_iter().fold(PodKind::Normal, |best, k| {
-            if self.mix.fraction(k) > self.mix.fraction(best) {
+    /// The most common particle class (the single particle of the one-pod rigs); the first
+    /// of equals.
+    pub fn typical_class(&self) -> usize {
+        (0..self.fractions.len()).fold(0, |best, k| {
+            if self.fractions[k] > self.fractions[best] {
                 k
             } else {
                 best
@@ -178,20 +197,20 @@ impl RunInputs {
         })
     }
 
-    /// `n` pod shapes in the mix's proportions (largest remainders), shuffled by `rng`
-    /// (Fisher–Yates), so every placement seed mixes the shapes differently.
-    pub fn shuffled_kinds(&self, n: usize, rng: &mut SplitMix64) -> Vec<PodKind> {
-        let counts = self.mix.apportion(n);
-        let mut kinds: Vec<PodKind> = PodKind::ALL
+    /// `n` particle classes in the study's proportions (largest remainders), shuffled by
+    /// `rng` (Fisher–Yates), so every placement seed mixes them differently.
+    pub fn shuffled_classes(&self, n: usize, rng: &mut SplitMix64) -> Vec<usize> {
+        let counts = apportion(&self.fractions, n);
+        let mut classes: Vec<usize> = counts
             .into_iter()
-            .zip(counts)
+            .enumerate()
             .flat_map(|(k, c)| std::iter::repeat_n(k, c))
             .collect();
-        for i in (1..kinds.len()).rev() {
+        for i in (1..classes.len()).rev() {
             let j = rng.below(i as u64 + 1) as usize;
-            kinds.swap(i, j);
+            classes.swap(i, j);
         }
-        kinds
+        classes
     }
 }
 
@@ -300,6 +319,17 @@ pub fn add_pod(
     velocity_m_s: [f64; 3],
     experiment: Experiment,
 ) -> Result<BodyId, ExperimentError> {
+    if template.is_sphere() {
+        // A sphere particle is a body of its own, not a one-sphere clump: the same mass and
+        // inertia (the core's sphere of the material's density), the cheaper integrator.
+        let mut s = SphereSpec::at_rest(
+            material,
+            template.spheres[0].radius_mm * M_PER_MM,
+            position_mm.map(|x| x * M_PER_MM),
+        );
+        s.velocity_m_s = velocity_m_s;
+        return w.add_sphere(s).map_err(|e| setup_error(experiment, e));
+    }
     let r = quat_matrix(q);
     let spheres: Vec<ClumpSphere> = template
         .spheres

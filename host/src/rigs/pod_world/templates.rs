@@ -13,10 +13,12 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 
+use arachis_core::units::LENGTH_M_TO_MM;
+
 use super::error::ExperimentError;
 use crate::shapes::{
     fill_with_spheres, filling_report, read_stl, FillOptions, FillTarget, MassProperties, PodKind,
-    PodShape, Solid, Sphere,
+    PodShape, Solid, Sphere, IDENTITY_AXES,
 };
 
 /// Voxels along a pod's longest edge when filling it: 40 resolves 0.9 mm on a 34 mm pod,
@@ -25,12 +27,12 @@ pub const FILL_RESOLUTION: usize = 40;
 /// Voxels along the longest edge when integrating the shape's mass properties.
 pub const MASS_RESOLUTION: usize = 64;
 
-/// One filled pod shape in its principal frame (centre of mass at the origin, principal
-/// axes along x, y, z).
+/// One filled pod shape (or one sphere) in its principal frame (centre of mass at the
+/// origin, principal axes along x, y, z).
 #[derive(Debug, Clone, PartialEq)]
 pub struct PodTemplate {
-    /// The shape.
-    pub kind: PodKind,
+    /// The pod shape; `None` for a sphere particle.
+    pub kind: Option<PodKind>,
     /// Spheres, principal frame, mm.
     pub spheres: Vec<Sphere>,
     /// The shape's mass properties (body frame of the shape).
@@ -41,19 +43,65 @@ pub struct PodTemplate {
     pub min_sphere_radius_mm: f64,
 }
 
-/// What a set of templates depends on.
-#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
-pub struct TemplateKey {
-    /// L, W, H (mm) and density (kg/m³) as raw f64 bits.
-    pub dims_bits: [u64; 4],
-    /// Spheres per pod.
-    pub spheres_per_pod: u32,
-    /// Scanned STL path per shape (resolved), if any.
-    pub stl: Vec<(PodKind, PathBuf)>,
+impl PodTemplate {
+    /// One sphere of radius `radius_mm` and density `density_kg_m3`: m = ρ·(4/3)πR³,
+    /// I = (2/5)mR² about every axis.
+    pub fn sphere(radius_mm: f64, density_kg_m3: f64) -> Self {
+        let volume_mm3 = 4.0 / 3.0 * std::f64::consts::PI * radius_mm.powi(3);
+        let mass_kg = density_kg_m3 * volume_mm3 / LENGTH_M_TO_MM.powi(3);
+        let r_m = radius_mm / LENGTH_M_TO_MM;
+        let inertia = SOLID_SPHERE_INERTIA_FACTOR * mass_kg * r_m * r_m;
+        PodTemplate {
+            kind: None,
+            spheres: vec![Sphere {
+                centre_mm: [0.0; 3],
+                radius_mm,
+            }],
+            mass: MassProperties {
+                volume_mm3,
+                mass_kg,
+                centre_of_mass_mm: [0.0; 3],
+                principal_inertia_kg_m2: [inertia; 3],
+                principal_axes: IDENTITY_AXES,
+            },
+            bounding_radius_mm: radius_mm,
+            min_sphere_radius_mm: radius_mm,
+        }
+    }
+
+    /// `true` for a sphere particle (one sphere at the centre of mass).
+    pub fn is_sphere(&self) -> bool {
+        self.kind.is_none()
+    }
 }
 
-/// The three templates (normal, cocoon, single grain), indexed by `PodKind as usize`.
-pub type TemplateSet = Arc<[PodTemplate; 3]>;
+/// (2/5): a solid sphere's moment of inertia over m·R².
+const SOLID_SPHERE_INERTIA_FACTOR: f64 = 0.4;
+
+/// What a set of templates depends on.
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
+pub enum TemplateKey {
+    /// Pods of a shape mix.
+    Pods {
+        /// L, W, H (mm) and density (kg/m³) as raw f64 bits.
+        dims_bits: [u64; 4],
+        /// Spheres per pod.
+        spheres_per_pod: u32,
+        /// Scanned STL path per shape (resolved), if any.
+        stl: Vec<(PodKind, PathBuf)>,
+    },
+    /// Spheres: each class's radius (mm) and the density (kg/m³) as raw f64 bits.
+    Spheres {
+        /// Radii, mm, as raw f64 bits.
+        radii_bits: Vec<u64>,
+        /// Density, kg/m³, as raw f64 bits.
+        density_bits: u64,
+    },
+}
+
+/// The templates of a study's particle classes: the three pod shapes indexed by
+/// `PodKind as usize`, or one sphere per size class in file order.
+pub type TemplateSet = Arc<Vec<PodTemplate>>;
 
 /// Filled templates by key; `Sync`, so rayon threads can share one.
 #[derive(Debug, Default)]
@@ -83,22 +131,41 @@ impl TemplateCache {
     }
 }
 
-/// Fills the three shapes of `key`.
+/// Fills the three shapes of `key`, or makes its spheres.
 pub fn build_templates(key: &TemplateKey) -> Result<TemplateSet, ExperimentError> {
-    let [l, w, h, rho] = key.dims_bits.map(f64::from_bits);
+    let (dims_bits, spheres_per_pod, stl) = match key {
+        TemplateKey::Pods {
+            dims_bits,
+            spheres_per_pod,
+            stl,
+        } => (dims_bits, *spheres_per_pod, stl),
+        TemplateKey::Spheres {
+            radii_bits,
+            density_bits,
+        } => {
+            let rho = f64::from_bits(*density_bits);
+            return Ok(Arc::new(
+                radii_bits
+                    .iter()
+                    .map(|&r| PodTemplate::sphere(f64::from_bits(r), rho))
+                    .collect(),
+            ));
+        }
+    };
+    let [l, w, h, rho] = dims_bits.map(f64::from_bits);
     let one = |kind: PodKind| -> Result<PodTemplate, ExperimentError> {
-        let scan = key.stl.iter().find(|(k, _)| *k == kind);
+        let scan = stl.iter().find(|(k, _)| *k == kind);
         let solid: Box<dyn Solid> = match scan {
             Some((_, path)) => Box::new(read_stl(path)?),
             None => Box::new(PodShape::new(kind, l, w, h)?),
         };
-        template(kind, solid.as_ref(), key.spheres_per_pod as usize, rho)
+        template(kind, solid.as_ref(), spheres_per_pod as usize, rho)
     };
-    Ok(Arc::new([
-        one(PodKind::Normal)?,
-        one(PodKind::Cocoon)?,
-        one(PodKind::SingleGrain)?,
-    ]))
+    PodKind::ALL
+        .into_iter()
+        .map(one)
+        .collect::<Result<Vec<_>, _>>()
+        .map(Arc::new)
 }
 
 fn template(
@@ -125,7 +192,7 @@ fn template(
         .map(|s| s.radius_mm)
         .fold(f64::INFINITY, f64::min);
     Ok(PodTemplate {
-        kind,
+        kind: Some(kind),
         spheres: principal.spheres,
         mass: report.exact,
         bounding_radius_mm,

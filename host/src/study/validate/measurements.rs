@@ -58,7 +58,9 @@ impl Validator<'_, '_> {
             return None;
         };
         let missing = match rig.world {
-            WorldKind::Pods if file.pods.is_none() => Some("[materials], [pods] and [pairs]"),
+            WorldKind::Pods if !file.has_particles() => {
+                Some("[materials], [pods] (or [spheres]) and [pairs]")
+            }
             WorldKind::PullOff if file.rig.is_none() => Some("[rig]"),
             _ => None,
         };

@@ -29,6 +29,7 @@ use crate::limits::Limits;
 use crate::nearest_name::nearest_name;
 use crate::plant::topology::BondSet;
 use crate::rigs::pod_world::parameters;
+use crate::rigs::pod_world::sections::{Particles, Spheres};
 use crate::rigs::pod_world::Pods;
 use crate::study::error::StudyError;
 use crate::study::file_format::{StudyFile, PAIR_PROPERTIES};
@@ -63,10 +64,15 @@ pub(crate) fn validate(
     };
     v.header(file);
     if let Some(pods) = &file.pods {
-        v.materials(file);
         v.pods(pods, file, dir);
+    }
+    if let Some(spheres) = &file.spheres {
+        v.spheres(spheres, file);
+    }
+    if let Some(particles) = particles(file) {
+        v.materials(file);
         v.pairs(file);
-        v.contacts(pods, file);
+        v.contacts(particles, file);
     }
     v.measurements(file);
     v.parameters(file);
@@ -187,6 +193,54 @@ impl Validator<'_, '_> {
         }
     }
 
+    fn spheres(&mut self, p: &Spheres, file: &StudyFile) {
+        let at = KeyPath::root().key("spheres");
+        if file.pods.is_some() {
+            self.fail(
+                &at,
+                "a study has either [pods] or [spheres], not both: which particles should the \
+                 rigs simulate?",
+            );
+        }
+        if !file.materials.contains_key(&p.material) {
+            self.fail(
+                &at.key("material"),
+                format!("no [materials.{}] in this study", p.material),
+            );
+        }
+        match (p.radius_mm, p.sizes.is_empty()) {
+            (Some(r), true) => self.limit(&at.key("radius_mm"), r, Limits::Positive),
+            (None, false) => {
+                let sizes = at.key("sizes");
+                let mut sum = 0.0;
+                for (i, class) in p.sizes.iter().enumerate() {
+                    let k = sizes.index(i);
+                    self.limit(&k.key("radius_mm"), class.radius_mm, Limits::Positive);
+                    self.limit(&k.key("fraction"), class.fraction, Limits::Fraction);
+                    sum += class.fraction;
+                }
+                if sum.is_finite() && (sum - 1.0).abs() > SHAPE_MIX_TOLERANCE {
+                    self.fail(
+                        &sizes,
+                        format!(
+                            "the size fractions sum to {}, not 1",
+                            round_for_message(sum)
+                        ),
+                    );
+                }
+            }
+            (Some(_), false) => self.fail(
+                &at,
+                "give either radius_mm (one size) or [[spheres.sizes]] (a distribution), not both",
+            ),
+            (None, true) => self.fail(
+                &at,
+                "no size: give radius_mm (one size) or [[spheres.sizes]] (radius_mm and fraction \
+                 per class)",
+            ),
+        }
+    }
+
     fn pairs(&mut self, file: &StudyFile) {
         let at = KeyPath::root().key("pairs");
         let mut seen = BTreeSet::new();
@@ -250,8 +304,8 @@ impl Validator<'_, '_> {
 
 impl Validator<'_, '_> {
     /// The pods touch each other and the walls, so those pairs must exist.
-    fn contacts(&mut self, pods: &Pods, file: &StudyFile) {
-        let pod = &pods.material;
+    fn contacts(&mut self, particles: Particles<'_>, file: &StudyFile) {
+        let pod = particles.material();
         let Some(sim) = file.plan.as_ref().and_then(|p| p.simulation.as_ref()) else {
             return;
         };
@@ -264,7 +318,10 @@ impl Validator<'_, '_> {
             self.fail(&wall_key, format!("no [materials.{wall}] in this study"));
         }
         for (other, key) in [
-            (pod, KeyPath::root().key("pods").key("material")),
+            (
+                pod,
+                KeyPath::root().key(particles.section()).key("material"),
+            ),
             (wall, wall_key),
         ] {
             let forward = format!("{pod}-{other}");
@@ -277,6 +334,14 @@ impl Validator<'_, '_> {
             }
         }
     }
+}
+
+/// The study's particles, pods or spheres (pods when, wrongly, it has both).
+fn particles(file: &StudyFile) -> Option<Particles<'_>> {
+    file.pods
+        .as_ref()
+        .map(Particles::Pods)
+        .or(file.spheres.as_ref().map(Particles::Spheres))
 }
 
 /// Material names: lower-case letters, digits and '_' (so '-' can join pair names).

@@ -31,7 +31,7 @@ pub fn measured_rig_parameters(file: &StudyFile) -> Vec<&'static RigParameter> {
 
 impl Validator<'_, '_> {
     pub(super) fn parameters(&mut self, file: &StudyFile) {
-        if file.pods.is_none() {
+        if !file.has_particles() {
             self.rig_parameters(file);
             return;
         }
