@@ -9,6 +9,7 @@ pub mod calibration;
 pub mod cli;
 pub mod diagnose;
 pub mod doe;
+pub mod export;
 pub mod harvest;
 pub mod io;
 pub mod lab;

@@ -109,6 +109,9 @@ pub enum LabTest {
     Csv(Test),
     /// Repose (stacking) angle from a side photograph of a pile (seed 000 §3.6.1).
     Repose(super::lab_repose::Args),
+    /// Repose angle of a pile of spheres from its final positions (another engine's dump),
+    /// photographed as the repose rig photographs its own.
+    ReposePile(super::lab_repose_pile::Args),
 }
 
 /// The bench tests analysed from a CSV file of replicates.
@@ -236,6 +239,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let test = match args.test {
         LabTest::Csv(test) => test,
         LabTest::Repose(photo) => return super::lab_repose::run(photo, args.json),
+        LabTest::ReposePile(pile) => return super::lab_repose_pile::run(pile, args.json),
     };
     let report = analyze(test)?;
     let text = if args.json {

@@ -7,10 +7,12 @@ pub mod calibrate;
 pub mod compare;
 pub mod diagnose;
 pub mod doe;
+pub mod export;
 pub mod fit;
 pub mod harvest;
 pub mod lab;
 pub mod lab_repose;
+pub mod lab_repose_pile;
 pub mod plant;
 pub mod plant_calibrate;
 pub mod pour;
@@ -69,6 +71,9 @@ pub enum Command {
     /// Virtual harvest: plants through a toothed picking drum; loss rate and t-test against
     /// the field (seed 001 Table 12).
     Harvest(harvest::Args),
+    /// Write a study's rig for another engine (a LIGGGHTS 3.8 deck of the repose rig).
+    #[command(subcommand)]
+    Export(export::Target),
 }
 
 impl Cli {
@@ -92,6 +97,7 @@ impl Cli {
             Command::PlantCalibrate(args) => plant_calibrate::run(args),
             Command::Harvest(args) => harvest::run(args),
             Command::Plant(args) => plant::run(args),
+            Command::Export(target) => export::run(target),
         }
     }
 }

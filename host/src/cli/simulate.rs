@@ -25,9 +25,9 @@ use crate::rigs::pod_world::{
 use crate::rigs::repose_picture::write_pile_picture;
 use crate::study::Study;
 
-/// Arguments of `arachis simulate`.
+/// Which run of which study: the arguments `simulate` and `export liggghts` share.
 #[derive(Debug, clap::Args)]
-pub struct Args {
+pub struct RunSelection {
     /// The experiment: repose, plate_drop, incline_slide, rolling or compression.
     pub experiment: String,
     /// The study file (TOML).
@@ -44,6 +44,14 @@ pub struct Args {
     /// Placement seed; default: the study's `[plan.simulation] random_seed`.
     #[arg(long)]
     pub seed: Option<u64>,
+}
+
+/// Arguments of `arachis simulate`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The run.
+    #[command(flatten)]
+    pub run: RunSelection,
     /// Write VTK frames (`frame_NNNNNN.vtk` plus `particles.pvd`) into DIR.
     #[arg(long, value_name = "DIR")]
     pub vtk: Option<PathBuf>,
@@ -73,7 +81,9 @@ struct Printed<'a> {
 }
 
 /// Checks everything that can be checked before simulating.
-pub fn prepare(args: &Args) -> anyhow::Result<(Study, Experiment, ParameterValues, ModeName)> {
+pub fn prepare(
+    args: &RunSelection,
+) -> anyhow::Result<(Study, Experiment, ParameterValues, ModeName)> {
     let experiment = parse_experiment(&args.experiment)?;
     let study = Study::load(&args.study)?;
     let world = pod_world(&study, args)?;
@@ -92,6 +102,11 @@ pub fn prepare(args: &Args) -> anyhow::Result<(Study, Experiment, ParameterValue
         }
     }
     check_values(&world, &values).context("--set")?;
+    Ok((study, experiment, values, mode))
+}
+
+/// Refuses a `--picture` that cannot be drawn before the (possibly long) run.
+fn check_picture(args: &Args, experiment: Experiment) -> anyhow::Result<()> {
     if let Some(p) = &args.picture {
         let ext = p
             .extension()
@@ -107,11 +122,11 @@ pub fn prepare(args: &Args) -> anyhow::Result<(Study, Experiment, ParameterValue
             bail!("--picture is drawn for the repose experiment only");
         }
     }
-    Ok((study, experiment, values, mode))
+    Ok(())
 }
 
 /// The study's pod world, or the error saying it has none.
-fn pod_world<'a>(study: &'a Study, args: &Args) -> anyhow::Result<PodWorld<'a>> {
+pub fn pod_world<'a>(study: &'a Study, args: &RunSelection) -> anyhow::Result<PodWorld<'a>> {
     study.pod_world().with_context(|| {
         format!(
             "{}: `simulate` runs the pod rigs, and the study has no pod world ([materials], \
@@ -123,9 +138,10 @@ fn pod_world<'a>(study: &'a Study, args: &Args) -> anyhow::Result<PodWorld<'a>> 
 
 /// Runs `arachis simulate`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let (study, experiment, values, mode) = prepare(&args)?;
-    let world = pod_world(&study, &args)?;
-    let seed = args.seed.unwrap_or(world.simulation.random_seed);
+    let (study, experiment, values, mode) = prepare(&args.run)?;
+    check_picture(&args, experiment)?;
+    let world = pod_world(&study, &args.run)?;
+    let seed = args.run.seed.unwrap_or(world.simulation.random_seed);
     let condition = study.condition_of(experiment.name());
     let spec_hash = world
         .run_spec(experiment, &condition, &values, mode.as_str())

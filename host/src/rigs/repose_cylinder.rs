@@ -99,6 +99,104 @@ pub const PIXELS_PER_MIN_RADIUS: f64 = 4.0;
 /// Cylinder height above the top of the lattice, mm (an open top; nothing reaches it).
 pub const CYLINDER_HEADROOM_MM: f64 = 10.0;
 
+/// One particle of the initial lattice.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Placed {
+    /// Particle class ([`RunInputs::template`]).
+    pub class: usize,
+    /// Centre of mass, mm.
+    pub position_mm: [f64; 3],
+    /// Orientation, unit quaternion `[w, x, y, z]`.
+    pub orientation: [f64; 4],
+}
+
+/// The rig as it stands before the fill: the cylinder, scaled for the mode, and every
+/// particle on its lattice cell, drawn from the run's seed. [`run`] builds its world from
+/// it, and `arachis export liggghts` writes the same rig for LIGGGHTS.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Layout {
+    /// Cylinder diameter, mm.
+    pub diameter_mm: f64,
+    /// Cylinder length from the floor, mm.
+    pub cylinder_length_mm: f64,
+    /// The particles, in the order they are added.
+    pub particles: Vec<Placed>,
+    /// Spheres over all particles.
+    pub sphere_total: usize,
+}
+
+impl Layout {
+    /// Lays out the rig of `inputs` for placement seed `seed` (module notes, step 1).
+    pub fn new(inputs: &RunInputs, seed: u64) -> Result<Self, ExperimentError> {
+        let repose = &inputs.simulation.repose;
+        let n = inputs.mode.pods as usize;
+        let mut rng = SplitMix64::new(seed);
+        let classes = inputs.shuffled_classes(n, &mut rng);
+        let sphere_total: usize = classes
+            .iter()
+            .map(|&k| inputs.template(k).spheres.len())
+            .sum();
+
+        // Geometry (mm): a cylinder scaled for the mode.
+        let scale = match inputs.full_pods {
+            Some(full) if full > 0 && (n as u32) < full => (n as f64 / full as f64).cbrt(),
+            _ => 1.0,
+        };
+        let diameter_mm = repose.cylinder_diameter_mm * scale;
+        let radius_mm = 0.5 * diameter_mm;
+        let bound = inputs
+            .templates
+            .iter()
+            .map(|t| t.bounding_radius_mm)
+            .fold(0.0, f64::max);
+        let cell = 2.0 * bound + CELL_GAP_MM;
+        let reach = radius_mm - bound - WALL_CLEARANCE_MM;
+        if reach < 0.0 {
+            return Err(ExperimentError::Study {
+                experiment: EXPERIMENT.name(),
+                reason: format!(
+                    "the cylinder (diameter {diameter_mm:.1} mm for {n} pods) is narrower than one pod ({:.1} mm)",
+                    2.0 * bound
+                ),
+            });
+        }
+        let layer = layer_points(reach, cell);
+        let layers = n.div_ceil(layer.len());
+        let z0 = bound + WALL_CLEARANCE_MM;
+        let top_mm = z0 + (layers as f64 - 1.0) * cell + bound;
+        let cylinder_length_mm =
+            top_mm.max(repose.cylinder_height_mm * scale) + CYLINDER_HEADROOM_MM;
+        let mut particles = Vec::with_capacity(n);
+        let mut classes_left = classes.iter();
+        'layers: for k in 0..layers {
+            let turn = 2.0 * PI * unit_uniform(&mut rng);
+            let (s, c) = turn.sin_cos();
+            for p in &layer {
+                let Some(&class) = classes_left.next() else {
+                    break 'layers;
+                };
+                let position_mm = [
+                    c * p[0] - s * p[1],
+                    s * p[0] + c * p[1],
+                    z0 + k as f64 * cell,
+                ];
+                let orientation = random_quaternion(&mut rng);
+                particles.push(Placed {
+                    class,
+                    position_mm,
+                    orientation,
+                });
+            }
+        }
+        Ok(Layout {
+            diameter_mm,
+            cylinder_length_mm,
+            particles,
+            sphere_total,
+        })
+    }
+}
+
 /// Runs the repose rig (module notes).
 pub fn run(
     inputs: &RunInputs,
@@ -106,42 +204,11 @@ pub fn run(
     options: &RunOptions,
 ) -> Result<Observation, ExperimentError> {
     let repose = &inputs.simulation.repose;
-    let n = inputs.mode.pods as usize;
-    let mut rng = SplitMix64::new(seed);
-    let kinds = inputs.shuffled_classes(n, &mut rng);
-    let sphere_total: usize = kinds
-        .iter()
-        .map(|&k| inputs.template(k).spheres.len())
-        .sum();
-
-    // Geometry (mm): a cylinder scaled for the mode.
-    let scale = match inputs.full_pods {
-        Some(full) if full > 0 && (n as u32) < full => (n as f64 / full as f64).cbrt(),
-        _ => 1.0,
-    };
-    let diameter_mm = repose.cylinder_diameter_mm * scale;
+    let layout = Layout::new(inputs, seed)?;
+    let n = layout.particles.len();
+    let (diameter_mm, cylinder_length_mm) = (layout.diameter_mm, layout.cylinder_length_mm);
     let radius_mm = 0.5 * diameter_mm;
-    let bound = inputs
-        .templates
-        .iter()
-        .map(|t| t.bounding_radius_mm)
-        .fold(0.0, f64::max);
-    let cell = 2.0 * bound + CELL_GAP_MM;
-    let reach = radius_mm - bound - WALL_CLEARANCE_MM;
-    if reach < 0.0 {
-        return Err(ExperimentError::Study {
-            experiment: EXPERIMENT.name(),
-            reason: format!(
-                "the cylinder (diameter {diameter_mm:.1} mm for {n} pods) is narrower than one pod ({:.1} mm)",
-                2.0 * bound
-            ),
-        });
-    }
-    let layer = layer_points(reach, cell);
-    let layers = n.div_ceil(layer.len());
-    let z0 = bound + WALL_CLEARANCE_MM;
-    let top_mm = z0 + (layers as f64 - 1.0) * cell + bound;
-    let cylinder_length_mm = top_mm.max(repose.cylinder_height_mm * scale) + CYLINDER_HEADROOM_MM;
+    let sphere_total = layout.sphere_total;
 
     let mut arena = Arena::new(n, sphere_total);
     let mut w = arena.world(EXPERIMENT)?;
@@ -168,30 +235,16 @@ pub fn run(
         })
         .map_err(e)?;
     let fall = [0.0, 0.0, -repose.fill_speed_m_s];
-    let mut kinds_left = kinds.iter();
-    'layers: for k in 0..layers {
-        let turn = 2.0 * PI * unit_uniform(&mut rng);
-        let (s, c) = turn.sin_cos();
-        for p in &layer {
-            let Some(&kind) = kinds_left.next() else {
-                break 'layers;
-            };
-            let pos = [
-                c * p[0] - s * p[1],
-                s * p[0] + c * p[1],
-                z0 + k as f64 * cell,
-            ];
-            let q = random_quaternion(&mut rng);
-            add_pod(
-                &mut w,
-                inputs.template(kind),
-                mats.pod,
-                pos,
-                q,
-                fall,
-                EXPERIMENT,
-            )?;
-        }
+    for p in &layout.particles {
+        add_pod(
+            &mut w,
+            inputs.template(p.class),
+            mats.pod,
+            p.position_mm,
+            p.orientation,
+            fall,
+            EXPERIMENT,
+        )?;
     }
     let dt_s = set_rayleigh_timestep(&mut w, inputs, EXPERIMENT)?;
     let mut frames = FrameRecorder::new(options.vtk_dir.as_deref());
@@ -253,11 +306,11 @@ pub fn run(
         .iter()
         .map(|t| t.min_sphere_radius_mm)
         .fold(f64::INFINITY, f64::min);
-    let mm_per_px = min_radius / PIXELS_PER_MIN_RADIUS;
-    let azimuths: Vec<f64> = (0..VIEW_COUNT)
-        .map(|i| 180.0 * i as f64 / VIEW_COUNT as f64)
-        .collect();
-    let (measurement, refused_views) = measure_views(&pile, &azimuths, mm_per_px)?;
+    let Photographs {
+        measurement,
+        refused: refused_views,
+        mm_per_px,
+    } = photograph(&pile, min_radius)?;
     let angles: Vec<f64> = measurement
         .views
         .iter()
@@ -301,6 +354,34 @@ pub fn run(
         digest: format!("{digest:016x}"),
         vtk_series: vtk,
         details: ObservationDetails::Repose(details),
+    })
+}
+
+/// The rig's photographs of a pile ([`photograph`]).
+#[derive(Debug, Clone)]
+pub struct Photographs {
+    /// The mean angle and each usable view.
+    pub measurement: SimulatedRepose,
+    /// Views left out (azimuth, degrees; why).
+    pub refused: Vec<(f64, String)>,
+    /// Scale, mm per pixel.
+    pub mm_per_px: f64,
+}
+
+/// The rig's photographs of a pile (step 4 of the module notes): [`VIEW_COUNT`] azimuths
+/// over a half turn at [`PIXELS_PER_MIN_RADIUS`] pixels per radius of the smallest sphere
+/// `min_radius_mm`. `arachis lab repose-pile` applies it to another engine's final
+/// positions.
+pub fn photograph(pile: &[PileSphere], min_radius_mm: f64) -> Result<Photographs, ExperimentError> {
+    let mm_per_px = min_radius_mm / PIXELS_PER_MIN_RADIUS;
+    let azimuths: Vec<f64> = (0..VIEW_COUNT)
+        .map(|i| 180.0 * i as f64 / VIEW_COUNT as f64)
+        .collect();
+    let (measurement, refused) = measure_views(pile, &azimuths, mm_per_px)?;
+    Ok(Photographs {
+        measurement,
+        refused,
+        mm_per_px,
     })
 }
 
