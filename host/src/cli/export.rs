@@ -11,7 +11,7 @@ use std::path::PathBuf;
 use anyhow::{bail, Context};
 use clap::Subcommand;
 
-use super::simulate::{pod_world, prepare, RunSelection};
+use super::simulate::{pod_world, prepare, RunChoice, RunSelection};
 use crate::export::liggghts::repose_deck;
 use crate::rigs::pod_world::setup::RunInputs;
 use crate::rigs::pod_world::{Experiment, TemplateCache};
@@ -34,15 +34,9 @@ pub struct Args {
     /// Folder to write the deck into (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
-    /// Run mode: quick or full; default: the study's `[plan] mode`.
-    #[arg(long)]
-    pub mode: Option<String>,
-    /// Override a parameter, KEY=VALUE in SI (repeatable).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub set: Vec<String>,
-    /// Placement seed; default: the study's `[plan.simulation] random_seed`.
-    #[arg(long)]
-    pub seed: Option<u64>,
+    /// Mode, overrides and seed, as for `arachis simulate`.
+    #[command(flatten)]
+    pub choice: RunChoice,
 }
 
 /// Runs `arachis export`.
@@ -51,9 +45,7 @@ pub fn run(target: Target) -> anyhow::Result<()> {
     let selection = RunSelection {
         experiment: args.experiment.clone(),
         study: args.study.clone(),
-        mode: args.mode.clone(),
-        set: args.set.clone(),
-        seed: args.seed,
+        choice: args.choice.clone(),
     };
     let (study, experiment, values, mode) = prepare(&selection)?;
     if experiment != Experiment::Repose {
@@ -63,7 +55,7 @@ pub fn run(target: Target) -> anyhow::Result<()> {
         );
     }
     let world = pod_world(&study, &selection)?;
-    let seed = args.seed.unwrap_or(world.simulation.random_seed);
+    let seed = args.choice.seed.unwrap_or(world.simulation.random_seed);
     let condition = study.condition_of(experiment.name());
     let inputs = RunInputs::resolve(
         &world,

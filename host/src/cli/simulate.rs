@@ -25,14 +25,10 @@ use crate::rigs::pod_world::{
 use crate::rigs::repose_picture::write_pile_picture;
 use crate::study::Study;
 
-/// Which run of which study: the arguments `simulate` and `export liggghts` share.
-#[derive(Debug, clap::Args)]
-pub struct RunSelection {
-    /// The experiment: repose, plate_drop, incline_slide, rolling or compression.
-    pub experiment: String,
-    /// The study file (TOML).
-    #[arg(long, value_name = "STUDY.toml")]
-    pub study: PathBuf,
+/// Which run: mode, parameter overrides and seed, as `simulate` and `export liggghts` take
+/// them.
+#[derive(Debug, Clone, clap::Args)]
+pub struct RunChoice {
     /// Run mode: quick (fewer pods, coarser filling) or full (seed scale); default: the
     /// study's `[plan] mode`.
     #[arg(long)]
@@ -44,6 +40,19 @@ pub struct RunSelection {
     /// Placement seed; default: the study's `[plan.simulation] random_seed`.
     #[arg(long)]
     pub seed: Option<u64>,
+}
+
+/// Which run of which study.
+#[derive(Debug, clap::Args)]
+pub struct RunSelection {
+    /// The experiment: repose, plate_drop, incline_slide, rolling or compression.
+    pub experiment: String,
+    /// The study file (TOML).
+    #[arg(long, value_name = "STUDY.toml")]
+    pub study: PathBuf,
+    /// Mode, overrides and seed.
+    #[command(flatten)]
+    pub choice: RunChoice,
 }
 
 /// Arguments of `arachis simulate`.
@@ -88,14 +97,14 @@ pub fn prepare(
     let study = Study::load(&args.study)?;
     let world = pod_world(&study, args)?;
     let mode: ModeName = match (
-        &args.mode,
+        &args.choice.mode,
         study.file().plan.as_ref().and_then(|p| p.mode.as_ref()),
     ) {
         (Some(m), _) | (None, Some(m)) => m.parse()?,
         (None, None) => ModeName::Quick,
     };
     let mut values = ParameterValues::new();
-    for text in &args.set {
+    for text in &args.choice.set {
         let (key, value) = parse_assignment(text).with_context(|| format!("--set {text}"))?;
         if values.insert(key.clone(), value).is_some() {
             bail!("--set {key} is given twice");
@@ -141,7 +150,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let (study, experiment, values, mode) = prepare(&args.run)?;
     check_picture(&args, experiment)?;
     let world = pod_world(&study, &args.run)?;
-    let seed = args.run.seed.unwrap_or(world.simulation.random_seed);
+    let seed = args.run.choice.seed.unwrap_or(world.simulation.random_seed);
     let condition = study.condition_of(experiment.name());
     let spec_hash = world
         .run_spec(experiment, &condition, &values, mode.as_str())
