@@ -76,7 +76,8 @@ pub struct PairIn {
     pub restitution: Real,
     pub friction: Real,
     pub rolling: Real,
-    /// Term switches, one bit each.
+    /// Term switches, one bit each (bits 0–5: a set bit turns that term off); bits 6 and 7
+    /// put rolling friction and the Coulomb limit in LIGGGHTS' conventions.
     pub terms: u8,
 }
 
@@ -88,7 +89,18 @@ impl PairIn {
             restitution: self.restitution.get(0.335),
             friction: self.friction.get(0.854),
             rolling_friction: self.rolling.get(0.346),
-            conventions: arachis_core::contact::Conventions::EDEM,
+            conventions: arachis_core::contact::Conventions {
+                rolling: if self.terms & (1 << 6) != 0 {
+                    RollingConvention::LiggghtsCdt
+                } else {
+                    RollingConvention::Edem
+                },
+                friction: if self.terms & (1 << 7) != 0 {
+                    FrictionConvention::Liggghts
+                } else {
+                    FrictionConvention::Edem
+                },
+            },
             terms: TermSwitches {
                 hertz_normal: bit(0),
                 normal_damping: bit(1),
