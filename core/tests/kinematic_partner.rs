@@ -95,3 +95,34 @@ fn a_fixed_partner_of_equal_mass_damps_as_a_wall() {
         }
     }
 }
+
+/// Two kinematic bodies pressed into each other (a clamp closing on a fixed part): no force
+/// moves either, so their contact has no effective mass and no damping, and the step reports
+/// the elastic reaction instead of failing on m* = 1/(0 + 0).
+#[test]
+fn two_kinematic_bodies_in_contact_step() {
+    for r_b in [R_M, 1.25 * R_M] {
+        let mut o = Owned::<Fx>::new(2, 2);
+        let mut w = World::new(o.storage()).unwrap();
+        let pod = w.add_material(POD).unwrap();
+        w.set_pair(pod, pod, normal_only(E)).unwrap();
+        let a = w
+            .add_sphere(SphereSpec::at_rest(pod, R_M, [0.0, 0.0, 0.0]))
+            .unwrap();
+        // Overlapping by 0.01 mm, closing at 0.1 m/s.
+        let gap = R_M + r_b - 1e-5;
+        let b = w
+            .add_sphere(SphereSpec::at_rest(pod, r_b, [0.0, 0.0, gap]))
+            .unwrap();
+        w.set_body_kinematic(a).unwrap();
+        w.set_body_kinematic(b).unwrap();
+        w.set_body_velocity(b, [0.0, 0.0, -0.1], [0.0; 3]).unwrap();
+        w.set_timestep_s(1e-6).unwrap();
+        w.step().unwrap();
+        let push = w.body(a).force.z.to_f64();
+        assert!(
+            push < 0.0,
+            "R_b {r_b}: no reaction on the lower body: {push}"
+        );
+    }
+}
