@@ -23,7 +23,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-seeds=6
+seeds=8
 spheres=1500
 json=0
 while [ $# -gt 0 ]; do
