@@ -18,7 +18,8 @@
 //! is within 2 % of 31.06°. That run passed with ψ = 0.51 %, by a draw whose chance its own
 //! README put at about 0.37; the re-run that issue 16's new core bits required gives
 //! ψ = 45.742 % (screening, under the quick piles' 5° scatter, did not carry the rolling
-//! friction). The claim no longer holds for the quick mode, and the README says so; making
+//! friction), and the re-run that the cylinder's solid rims required (2026-11-26) gives
+//! ψ = 11.164 %. The claim no longer holds for the quick mode, and the README says so; making
 //! the quick mode's validation robust is issue 19.
 //!
 //! Cost: one quick pile (about 10 CPU-s). Drawing the report's simulated pile re-simulates
