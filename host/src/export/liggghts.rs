@@ -31,8 +31,8 @@ use arachis_core::pair::PairSpec;
 use arachis_core::timestep::rayleigh_time_s;
 use arachis_core::units::LENGTH_M_TO_MM;
 
-use crate::rigs::pod_world::setup::RunInputs;
-use crate::rigs::repose_cylinder::{Layout, CHECK_INTERVAL_S, MIN_FILL_S, SETTLED_SPEED_M_S};
+use crate::rigs::pod_world::setup::{steps_in, RunInputs};
+use crate::rigs::repose_cylinder::{at_rest_energy_j, Layout, CHECK_INTERVAL_S, MIN_FILL_S};
 
 /// Faces around the cylinder's mesh: its faces lie inside the rig's cylinder by at most
 /// R(1 − cos(π/N)) = 5.4e-4 R (0.012 mm on a quick rig's 23 mm radius).
@@ -62,8 +62,7 @@ pub struct Deck {
     pub dt_s: f64,
 }
 
-/// The pair in LIGGGHTS' terms: its coefficients, and a warning when the study reads them
-/// in EDEM's conventions.
+/// A warning when the study reads pair `name` in conventions LIGGGHTS does not have.
 fn pair_warning(name: &str, pair: &PairSpec) -> Option<String> {
     (pair.conventions != Conventions::LIGGGHTS).then(|| {
         format!(
@@ -87,13 +86,10 @@ pub fn repose_deck(inputs: &RunInputs, seed: u64, source: &str) -> Result<Deck, 
     }
     let layout = Layout::new(inputs, seed).map_err(|e| e.to_string())?;
     let repose = &inputs.simulation.repose;
+    // LIGGGHTS runs in SI: `mm(x)` gives the length x mm in metres.
     let mm = |x: f64| x / LENGTH_M_TO_MM;
     let radius_of = |class: usize| inputs.template(class).spheres[0].radius_mm;
-    let min_radius_mm = inputs
-        .templates
-        .iter()
-        .map(|t| t.min_sphere_radius_mm)
-        .fold(f64::INFINITY, f64::min);
+    let min_radius_mm = inputs.min_sphere_radius_mm();
     let pod = &inputs.pod;
     let wall = &inputs.wall;
     let dt_s = inputs.simulation.dt_rayleigh_fraction
@@ -104,9 +100,8 @@ pub fn repose_deck(inputs: &RunInputs, seed: u64, source: &str) -> Result<Deck, 
             pod.poisson,
         );
     let n = layout.particles.len();
-    let typical_mass_kg = inputs.template(inputs.typical_class()).mass.mass_kg;
-    let at_rest_j = n as f64 * 0.5 * typical_mass_kg * SETTLED_SPEED_M_S * SETTLED_SPEED_M_S;
-    let check_steps = ((CHECK_INTERVAL_S / dt_s).round() as u64).max(1);
+    let at_rest_j = at_rest_energy_j(inputs, n);
+    let check_steps = steps_in(CHECK_INTERVAL_S, dt_s);
     let radius_mm = 0.5 * layout.diameter_mm;
     let half_width_mm = radius_mm * (1.0 + BOX_HALF_WIDTH_RADII);
     let box_top_mm = 2.0 * layout.cylinder_length_mm + radius_mm;

@@ -250,8 +250,7 @@ pub fn run(
     let mut frames = FrameRecorder::new(options.vtk_dir.as_deref());
     frames.record(&w);
 
-    let pod_mass_kg = inputs.template(inputs.typical_class()).mass.mass_kg;
-    let at_rest_j = n as f64 * 0.5 * pod_mass_kg * SETTLED_SPEED_M_S * SETTLED_SPEED_M_S;
+    let at_rest_j = at_rest_energy_j(inputs, n);
     let chunk = steps_for(&w, CHECK_INTERVAL_S);
 
     // 1. Fill and settle.
@@ -301,11 +300,7 @@ pub fn run(
             radius_mm: s.radius.to_f64(),
         })
         .collect();
-    let min_radius = inputs
-        .templates
-        .iter()
-        .map(|t| t.min_sphere_radius_mm)
-        .fold(f64::INFINITY, f64::min);
+    let min_radius = inputs.min_sphere_radius_mm();
     let Photographs {
         measurement,
         refused: refused_views,
@@ -355,6 +350,13 @@ pub fn run(
         vtk_series: vtk,
         details: ObservationDetails::Repose(details),
     })
+}
+
+/// Kinetic energy below which `particles` particles count as at rest, J: each at
+/// [`SETTLED_SPEED_M_S`] with the mass of the most common particle.
+pub fn at_rest_energy_j(inputs: &RunInputs, particles: usize) -> f64 {
+    let mass_kg = inputs.template(inputs.typical_class()).mass.mass_kg;
+    particles as f64 * 0.5 * mass_kg * SETTLED_SPEED_M_S * SETTLED_SPEED_M_S
 }
 
 /// The rig's photographs of a pile ([`photograph`]).

@@ -89,12 +89,12 @@ pub struct RunSpheres {
 }
 
 impl RunSpec {
-    /// The particles' material name.
-    pub fn particle_material(&self) -> &str {
+    /// The particles' material name (`None` when the spec has no particles).
+    pub fn particle_material(&self) -> Option<&str> {
         match (&self.pods, &self.spheres) {
-            (Some(p), _) => &p.material,
-            (None, Some(s)) => &s.material,
-            (None, None) => "",
+            (Some(p), _) => Some(&p.material),
+            (None, Some(s)) => Some(&s.material),
+            (None, None) => None,
         }
     }
 }

@@ -117,7 +117,11 @@ impl RunInputs {
         let spec = world
             .run_spec(experiment, condition, values, mode.as_str())
             .map_err(|reason| study_error(experiment, reason))?;
-        let pod_name = spec.particle_material().to_owned();
+        let no_particles = || study_error(experiment, "the study has no particles");
+        let pod_name = spec
+            .particle_material()
+            .ok_or_else(no_particles)?
+            .to_owned();
         let wall_name = spec.simulation.wall_material.clone();
         let pod = material(&spec, &pod_name, experiment)?;
         let pod_poisson = if pod.poisson >= ISOTROPIC_POISSON_LIMIT {
@@ -160,7 +164,7 @@ impl RunInputs {
                 };
                 (key, spheres.sizes.iter().map(|c| c.fraction).collect())
             }
-            (None, None) => return Err(study_error(experiment, "the study has no particles")),
+            (None, None) => return Err(no_particles()),
         };
         let templates = cache.get(&key)?;
         Ok(RunInputs {
@@ -183,6 +187,14 @@ impl RunInputs {
     /// size class).
     pub fn template(&self, class: usize) -> &PodTemplate {
         &self.templates[class]
+    }
+
+    /// Radius of the smallest sphere of any particle class, mm.
+    pub fn min_sphere_radius_mm(&self) -> f64 {
+        self.templates
+            .iter()
+            .map(|t| t.min_sphere_radius_mm)
+            .fold(f64::INFINITY, f64::min)
     }
 
     /// The most common particle class (the single particle of the one-pod rigs); the first
@@ -388,7 +400,12 @@ pub fn run_steps(
 
 /// Steps in `duration_s` at the world's dt (at least one).
 pub fn steps_for(w: &World<'_, Fx>, duration_s: f64) -> u64 {
-    ((duration_s / w.timestep_s()).round() as u64).max(1)
+    steps_in(duration_s, w.timestep_s())
+}
+
+/// Steps in `duration_s` at time step `dt_s` (at least one).
+pub fn steps_in(duration_s: f64, dt_s: f64) -> u64 {
+    ((duration_s / dt_s).round() as u64).max(1)
 }
 
 /// Kinetic energy, J (the core reports mJ).
