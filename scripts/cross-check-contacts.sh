@@ -12,7 +12,9 @@
 # (rebound ratio), oblique impact at vz0 -1 m/s with vx0 0.5 and 3 m/s (vx, vz, omega_y after),
 # rolling on a plate at 0.1 m/s until CDT rolling friction stops it (time, distance), a sphere
 # spinning at 10 rad/s on a fixed sphere (spin-down rate, stopping time), and the normal impact
-# at 1 m/s on a fixed sphere instead of the wall (rebound ratio). The case parameters
+# at 1 m/s on a fixed sphere instead of the wall (rebound ratio); and the rolling and spin cases
+# again with `rolling_friction epsd2` (the spin case also gives the rocking period on the
+# rolling spring once the spin has stopped). The case parameters
 # live in the test (it checks each trace's `param` lines against them) and in the variables
 # passed below.
 #
@@ -42,9 +44,11 @@ run_case oblique_0.5    impact.in -var vx0 0.5 -var vz0 -1.0
 run_case oblique_3      impact.in -var vx0 3.0 -var vz0 -1.0
 run_case rolling_plate  rolling_plate.in
 run_case spin_on_sphere spin_on_sphere.in
+run_case rolling_plate_epsd2  rolling_plate.in -var rolling epsd2
+run_case spin_on_sphere_epsd2 spin_on_sphere.in -var rolling epsd2
 run_case sphere_1       impact_on_sphere.in -var vz0 -1.0
 liggghts_end=$(date +%s.%N)
-awk -v a="$start" -v b="$liggghts_end" 'BEGIN { printf "LIGGGHTS: 8 runs in %.1f s\n", b - a }' >&2
+awk -v a="$start" -v b="$liggghts_end" 'BEGIN { printf "LIGGGHTS: 10 runs in %.1f s\n", b - a }' >&2
 
 ARACHIS_LIGGGHTS_RESULTS="$work" nice -n 10 cargo test --release -q -p arachis-core \
     --test cross_check_liggghts -- --ignored --nocapture

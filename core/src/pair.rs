@@ -17,7 +17,7 @@ use crate::contact::{
 use crate::contact::{
     ContactForce, ContactKinematics, ContactState, ContactTerm, Conventions, CoulombLimit,
     FrictionConvention, HertzNormal, MindlinTangential, NormalDamping, RollingCdt,
-    RollingCdtLiggghts, RollingConvention, TangentialDamping,
+    RollingCdtLiggghts, RollingConvention, RollingEpsd2Liggghts, TangentialDamping,
 };
 use crate::error::SetupError;
 use crate::material::{finite, Material};
@@ -88,6 +88,15 @@ impl PairSpec {
         }
     }
 
+    /// `true` when the pair keeps per-contact state beyond δt, so a world using it needs an
+    /// effect-history arena ([`crate::body::StorageLengths::with_effects`]): LIGGGHTS' `epsd2`
+    /// rolling convention with rolling friction on.
+    pub fn needs_effect_history(&self) -> bool {
+        self.conventions.rolling == RollingConvention::LiggghtsEpsd2
+            && self.terms.rolling_cdt
+            && self.rolling_friction > 0.0
+    }
+
     /// Check e ∈ (0, 1], μs ≥ 0, μr ≥ 0, all finite.
     pub fn validate(&self) -> Result<(), SetupError> {
         let e = finite(self.restitution, "restitution")?;
@@ -135,6 +144,8 @@ pub struct PairParams<S> {
     pub rolling: RollingCdt<S>,
     /// CDT rolling friction in LIGGGHTS' convention (off unless the pair asks for it).
     pub rolling_liggghts: RollingCdtLiggghts<S>,
+    /// EPSD2 rolling resistance in LIGGGHTS' convention (off unless the pair asks for it).
+    pub rolling_epsd2: RollingEpsd2Liggghts<S>,
     /// Optional effect: viscoelastic normal damping (off by default; [`crate::effects`]).
     pub viscoelastic: ViscoelasticNormal<S>,
     /// Optional effect: SJKR cohesion (off by default; [`crate::effects`]).
@@ -167,6 +178,7 @@ impl<S: Scalar> PairParams<S> {
             coulomb: CoulombLimit::new(spec.friction),
             rolling: RollingCdt::new(spec.rolling_friction),
             rolling_liggghts: RollingCdtLiggghts::new(spec.rolling_friction, e_star),
+            rolling_epsd2: RollingEpsd2Liggghts::new(spec.rolling_friction, g_star),
             viscoelastic: ViscoelasticNormal::default(),
             cohesion: CohesionSjkr::default(),
             hysteretic: HystereticNormal::default(),
@@ -181,10 +193,12 @@ impl<S: Scalar> PairParams<S> {
         p.coulomb.on &= t.coulomb_limit && t.mindlin_tangential;
         p.rolling.on &= t.rolling_cdt;
         p.rolling_liggghts.on &= t.rolling_cdt;
-        match spec.conventions.rolling {
-            RollingConvention::Edem => p.rolling_liggghts.on = false,
-            RollingConvention::LiggghtsCdt => p.rolling.on = false,
-        }
+        p.rolling_epsd2.on &= t.rolling_cdt;
+        // Exactly one reading of the rolling friction stays on.
+        let rolling = spec.conventions.rolling;
+        p.rolling.on &= rolling == RollingConvention::Edem;
+        p.rolling_liggghts.on &= rolling == RollingConvention::LiggghtsCdt;
+        p.rolling_epsd2.on &= rolling == RollingConvention::LiggghtsEpsd2;
         p.coulomb.spring_only = spec.conventions.friction == FrictionConvention::Liggghts;
         p.fuse();
         p
@@ -211,6 +225,7 @@ impl<S: Scalar> PairParams<S> {
             | self.rolling_epsd.on
             | self.jkr.on
             | self.rolling_liggghts.on
+            | self.rolling_epsd2.on
             | self.coulomb.spring_only);
         let base_on = self.hertz.on & self.tangential.on & self.coulomb.on;
         let to_fx = |x: S| crate::num::Fx::from_f64(x.to_f64());
@@ -227,24 +242,31 @@ impl<S: Scalar> PairParams<S> {
     }
 
     /// `true` when contacts of this pair keep history (tangential spring, hysteresis, EPSD
-    /// rolling angle or JKR neck).
+    /// rolling angle, EPSD2 rolling torque or JKR neck).
     #[inline(always)]
     pub fn keeps_history(&self) -> bool {
-        self.tangential.on | self.hysteretic.on | self.rolling_epsd.on | self.jkr.on
+        self.tangential.on | self.hysteretic.on | self.needs_effect_history()
+    }
+
+    /// `true` when contacts of this pair keep state beyond δt, in the effect-history arena
+    /// ([`crate::body::StorageLengths::with_effects`]).
+    #[inline(always)]
+    pub fn needs_effect_history(&self) -> bool {
+        self.hysteretic.on | self.rolling_epsd.on | self.rolling_epsd2.on | self.jkr.on
     }
 
     /// `true` when a term needs R* in [`ContactKinematics::r_star`] (EPSD rolling,
     /// LIGGGHTS-convention rolling, JKR).
     #[inline(always)]
     pub fn needs_r_star(&self) -> bool {
-        self.rolling_epsd.on | self.rolling_liggghts.on | self.jkr.on
+        self.needs_relative_spin() | self.jkr.on
     }
 
     /// `true` when a term needs the relative spin [`ContactKinematics::w_rel`] and adds a
     /// torque vector ([`ContactForce::rolling_torque`]): EPSD or LIGGGHTS-convention rolling.
     #[inline(always)]
     pub fn needs_relative_spin(&self) -> bool {
-        self.rolling_epsd.on | self.rolling_liggghts.on
+        self.rolling_epsd.on | self.rolling_liggghts.on | self.rolling_epsd2.on
     }
 
     /// `true` when a damping term needs √(a·m*).
@@ -272,6 +294,7 @@ impl<S: Scalar> PairParams<S> {
         self.coulomb.apply(k, state, &mut out);
         self.rolling.apply(k, state, &mut out);
         self.rolling_liggghts.apply(k, state, &mut out);
+        self.rolling_epsd2.apply(k, state, &mut out);
         self.rolling_epsd.apply(k, state, &mut out);
         self.cohesion.apply(k, state, &mut out);
         if self.jkr.on {

@@ -26,6 +26,10 @@
 //! 5. `sphere_1`: case 1 at 1 m/s on a fixed sphere of the same size instead of the wall; the
 //!    rebound ratio. With this damping law the ratio depends on β and on m*/m alone, so it
 //!    checks that a fixed partner gives m* = m as a wall does (LIGGGHTS' `fix freeze`).
+//! 6. `rolling_plate_epsd2`, `spin_on_sphere_epsd2`: cases 3 and 4 with LIGGGHTS'
+//!    `rolling_friction epsd2` ([`RollingConvention::LiggghtsEpsd2`]; the decks'
+//!    `-var rolling epsd2`); once the spin has stopped, the sphere on the fixed sphere rocks on
+//!    the rolling spring, and its period (from ω_y's sign changes) is compared too.
 //!
 //! Units: the table prints SI (m, s, m/s, rad/s); inside the core, mm, g, ms (velocities in
 //! mm/ms = m/s, spins in rad/ms, forces in N). Both engines sample the state at the same step
@@ -109,12 +113,32 @@ enum Setup {
     ImpactOnSphere { vz0: f64 },
 }
 
-/// One cross-check case: its name (the trace file stem), set-up, step and step count.
+/// One cross-check case: its name (the trace file stem), set-up, step, step count and the
+/// LIGGGHTS rolling model its deck ran (`cdt`, or `epsd2` by `-var rolling epsd2`).
 struct Case {
     name: &'static str,
     setup: Setup,
     dt_s: f64,
     steps: u64,
+    rolling: RollingConvention,
+}
+
+impl Case {
+    /// The LIGGGHTS conventions Arachis runs this case in.
+    fn conventions(&self) -> Conventions {
+        Conventions {
+            rolling: self.rolling,
+            ..Conventions::LIGGGHTS
+        }
+    }
+
+    /// The deck's name of its rolling model (`param rolling_model`).
+    fn rolling_model(&self) -> &'static str {
+        match self.rolling {
+            RollingConvention::LiggghtsEpsd2 => "epsd2",
+            _ => "cdt",
+        }
+    }
 }
 
 const CASES: &[Case] = &[
@@ -126,6 +150,7 @@ const CASES: &[Case] = &[
         },
         dt_s: IMPACT_DT_S,
         steps: IMPACT_STEPS,
+        rolling: RollingConvention::LiggghtsCdt,
     },
     Case {
         name: "normal_1",
@@ -135,6 +160,7 @@ const CASES: &[Case] = &[
         },
         dt_s: IMPACT_DT_S,
         steps: IMPACT_STEPS,
+        rolling: RollingConvention::LiggghtsCdt,
     },
     Case {
         name: "normal_2",
@@ -144,6 +170,7 @@ const CASES: &[Case] = &[
         },
         dt_s: IMPACT_DT_S,
         steps: IMPACT_STEPS,
+        rolling: RollingConvention::LiggghtsCdt,
     },
     Case {
         name: "oblique_0.5",
@@ -153,6 +180,7 @@ const CASES: &[Case] = &[
         },
         dt_s: IMPACT_DT_S,
         steps: IMPACT_STEPS,
+        rolling: RollingConvention::LiggghtsCdt,
     },
     Case {
         name: "oblique_3",
@@ -162,24 +190,42 @@ const CASES: &[Case] = &[
         },
         dt_s: IMPACT_DT_S,
         steps: IMPACT_STEPS,
+        rolling: RollingConvention::LiggghtsCdt,
     },
     Case {
         name: "rolling_plate",
         setup: Setup::Rolling { v0: ROLLING_V0 },
         dt_s: REST_DT_S,
         steps: ROLLING_STEPS,
+        rolling: RollingConvention::LiggghtsCdt,
+    },
+    Case {
+        name: "rolling_plate_epsd2",
+        setup: Setup::Rolling { v0: ROLLING_V0 },
+        dt_s: REST_DT_S,
+        steps: ROLLING_STEPS,
+        rolling: RollingConvention::LiggghtsEpsd2,
     },
     Case {
         name: "spin_on_sphere",
         setup: Setup::Spin { w0: SPIN_W0 },
         dt_s: REST_DT_S,
         steps: SPIN_STEPS,
+        rolling: RollingConvention::LiggghtsCdt,
+    },
+    Case {
+        name: "spin_on_sphere_epsd2",
+        setup: Setup::Spin { w0: SPIN_W0 },
+        dt_s: REST_DT_S,
+        steps: SPIN_STEPS,
+        rolling: RollingConvention::LiggghtsEpsd2,
     },
     Case {
         name: "sphere_1",
         setup: Setup::ImpactOnSphere { vz0: -1.0 },
         dt_s: IMPACT_DT_S,
         steps: IMPACT_STEPS,
+        rolling: RollingConvention::LiggghtsCdt,
     },
 ];
 
@@ -272,6 +318,12 @@ fn check_params(case: &Case, tr: &Trace) {
             case.name
         );
     }
+    assert_eq!(
+        tr.params.get("rolling_model").map(String::as_str),
+        Some(case.rolling_model()),
+        "{}: LIGGGHTS ran another rolling model",
+        case.name
+    );
     assert_eq!(
         tr.params.get("limit_force").map(String::as_str),
         Some("on"),
@@ -471,7 +523,7 @@ fn quantities(case: &Case, rows: &[Row]) -> Vec<Quantity> {
             let (sxy, sxx) = pts.iter().fold((0.0, 0.0), |(a, b), p| {
                 (a + (p.0 - mt) * (p.1 - mw), b + (p.0 - mt).powi(2))
             });
-            vec![
+            let mut q = vec![
                 Quantity {
                     name: "spin-down rate",
                     unit: "rad/s2",
@@ -482,15 +534,40 @@ fn quantities(case: &Case, rows: &[Row]) -> Vec<Quantity> {
                     unit: "s",
                     value: t,
                 },
-            ]
+            ];
+            if case.rolling == RollingConvention::LiggghtsEpsd2 {
+                q.push(Quantity {
+                    name: "rocking period",
+                    unit: "s",
+                    value: rocking_period(rows),
+                });
+            }
+            q
         }
+    }
+}
+
+/// The mean period of ω_y's oscillation after it first reaches 0 (twice the mean spacing of
+/// its sign changes, interpolated), s; NaN without two sign changes (a spin that stays
+/// stopped, as EDEM's rolling friction leaves it).
+fn rocking_period(rows: &[Row]) -> f64 {
+    let crossings: Vec<f64> = rows
+        .windows(2)
+        .filter_map(|p| {
+            let (a, b) = (p[0].w[1], p[1].w[1]);
+            ((a > 0.0) != (b > 0.0)).then(|| p[0].t + a / (a - b) * (p[1].t - p[0].t))
+        })
+        .collect();
+    match crossings.as_slice() {
+        [first, .., last] => 2.0 * (last - first) / (crossings.len() - 1) as f64,
+        _ => f64::NAN,
     }
 }
 
 /// Closed-form values in LIGGGHTS' convention where one exists (for information):
 /// restitution by [`common::restitution_reference`] (the clipped normal law integrated
 /// in f64), rolling 0.7·v0²/(μr·g) and 1.4·v0/(μr·g) (DESIGN §7; wall R* = R), spin-down
-/// μr·g·R*/(0.4·R²) with R* = R/2.
+/// μr·g·R*/(0.4·R²) with R* = R/2, and `epsd2`'s rocking period 2π·√(I/(8G*·a·R*²)).
 fn theory(case: &Case, q: &str) -> Option<f64> {
     match (case.setup, q) {
         (
@@ -509,6 +586,15 @@ fn theory(case: &Case, q: &str) -> Option<f64> {
         }
         (Setup::Spin { .. }, "spin-down rate") => {
             Some(ROLLING_FRICTION * GRAVITY * (RADIUS_M / 2.0) / (0.4 * RADIUS_M * RADIUS_M))
+        }
+        (Setup::Spin { .. }, "rocking period") => {
+            // 2π·√(I/k_r), k_r = 8G*·a·R*² at the equilibrium overlap (rolling_model_epsd2.h).
+            let r_star = RADIUS_M / 2.0;
+            let g_star = YOUNGS_PA / (2.0 * (1.0 + POISSON)) / (2.0 * (2.0 - POISSON));
+            let a = (r_star * equilibrium_overlap_m(r_star)).sqrt();
+            let k_r = 8.0 * g_star * a * r_star * r_star;
+            let inertia = 0.4 * mass_kg() * RADIUS_M * RADIUS_M;
+            Some(2.0 * std::f64::consts::PI * (inertia / k_r).sqrt())
         }
         (Setup::Spin { w0 }, "stopping time") => {
             Some(w0 * 0.4 * RADIUS_M * RADIUS_M / (ROLLING_FRICTION * GRAVITY * (RADIUS_M / 2.0)))
@@ -547,7 +633,7 @@ fn single_contacts_match_liggghts() {
         TOLERANCE * 100.0
     );
     println!(
-        "{:<15} {:<23} {:>6} {:>14} {:>14} {:>9} {:>4} {:>14} {:>9} {:>14}",
+        "{:<21} {:<23} {:>6} {:>14} {:>14} {:>9} {:>4} {:>14} {:>9} {:>14}",
         "case",
         "quantity",
         "unit",
@@ -564,7 +650,7 @@ fn single_contacts_match_liggghts() {
         let tr = read_trace(&dir.join(format!("{}.txt", case.name)));
         check_params(case, &tr);
         let steps: Vec<u64> = tr.rows.iter().map(|r| r.step).collect();
-        let lig = run_arachis(case, Conventions::LIGGGHTS, &steps);
+        let lig = run_arachis(case, case.conventions(), &steps);
         let edem = run_arachis(case, Conventions::EDEM, &steps);
         check_start(case, &tr.rows[0], &lig[0]);
         let (ql, qa, qe) = (
@@ -577,7 +663,7 @@ fn single_contacts_match_liggghts() {
             let ok = rel(a.value).abs() <= TOLERANCE;
             let th = theory(case, l.name).map_or("-".to_string(), |v| format!("{v:.8}"));
             println!(
-                "{:<15} {:<23} {:>6} {:>14.8} {:>14.8} {:>+9.4} {:>4} {:>14.8} {:>+9.4} {:>14}",
+                "{:<21} {:<23} {:>6} {:>14.8} {:>14.8} {:>+9.4} {:>4} {:>14.8} {:>+9.4} {:>14}",
                 case.name,
                 l.name,
                 l.unit,

@@ -6,7 +6,13 @@
 //! set spinning at ω0 and decelerates at a constant rate, a = μr·F·L/I with I = 0.4·m·R²
 //! and, at rest, F = m·g (the elastic and the total normal force then agree):
 //! - EDEM (seed 000 eq. (7)): L = R − α/2, the lever from the centre to the contact point;
-//! - LIGGGHTS (`rolling_model_cdt.h`): L = R* = R/2 on an equal sphere, L = R on a wall.
+//! - LIGGGHTS (`rolling_model_cdt.h`): L = R* = R/2 on an equal sphere, L = R on a wall;
+//! - LIGGGHTS' `epsd2` (`rolling_model_epsd2.h`): the same lever once its spring torque has
+//!   reached the limit μr·F·R* (two steps here; the rate is measured from step 100).
+//!
+//! Once the spin has stopped, `epsd2`'s spring holds the sphere like a torsion spring: it
+//! rocks about its centre with period 2π·√(I/k_r), k_r = 8G*·a·R*² (a = √(R*·α) of the settled
+//! contact), matched to [`PERIOD_TOLERANCE`].
 //!
 //! The measured rate matches theory to 2e-5 (the settled normal force differs from m·g by the
 //! residue of the settling oscillation, and fixed point rounds ω by 2.3e-10 rad/ms per step).
@@ -15,6 +21,8 @@
 //! in LIGGGHTS' convention, whose torques are equal and opposite, but not in EDEM's.
 
 mod common;
+use arachis_core::effects::EffectSpec;
+use arachis_core::error::CapacityKind;
 use arachis_core::prelude::*;
 use common::*;
 
@@ -30,6 +38,18 @@ const SETTLE_STEPS: u64 = 5_000;
 const MU_R: f64 = 0.3;
 /// Relative tolerance of the deceleration against theory.
 const RATE_TOLERANCE: f64 = 2e-5;
+/// Steps after the spin is set before the deceleration is measured: `epsd2`'s spring needs a
+/// few steps to reach its limit (the other conventions are at it from the first step).
+const RATE_FROM_STEP: u64 = 100;
+/// Relative tolerance of the `epsd2` rocking period: leapfrog's period error, (ω·dt)²/24, is
+/// 1e-5 at 400 steps a period; the normal force's settling residue moves a by less than 1e-4.
+const PERIOD_TOLERANCE: f64 = 1e-3;
+
+/// LIGGGHTS' `epsd2` rolling with its `tangential history` Coulomb test.
+const EPSD2: Conventions = Conventions {
+    rolling: RollingConvention::LiggghtsEpsd2,
+    friction: FrictionConvention::Liggghts,
+};
 
 /// What the spinning sphere rests on.
 #[derive(Clone, Copy, Debug)]
@@ -73,11 +93,12 @@ fn spin_down<S: Scalar>(conventions: Conventions, support: Support, w0: [f64; 3]
     };
     let lever = match conventions.rolling {
         RollingConvention::Edem => r - overlap / 2.0,
-        RollingConvention::LiggghtsCdt => r_star,
+        RollingConvention::LiggghtsCdt | RollingConvention::LiggghtsEpsd2 => r_star,
     };
     let g = G * 1e-3; // mm/ms²
     let theory = MU_R * g * lever / (0.4 * r * r);
     w.set_body_velocity(top, [0.0; 3], w0).unwrap();
+    w.run(RATE_FROM_STEP).unwrap();
     let w0_ms = w.body(top).angular_velocity.to_f64();
     let speed0 = w0_ms.iter().map(|x| x * x).sum::<f64>().sqrt();
     // Half of the stopping time of the fastest case (lever R).
@@ -90,7 +111,7 @@ fn spin_down<S: Scalar>(conventions: Conventions, support: Support, w0: [f64; 3]
 }
 
 fn check_spin_down<S: Scalar>() {
-    for conventions in [Conventions::EDEM, Conventions::LIGGGHTS] {
+    for conventions in [Conventions::EDEM, Conventions::LIGGGHTS, EPSD2] {
         for support in [Support::Sphere, Support::Floor] {
             let (rate, theory) = spin_down::<S>(conventions, support, [20.0, 0.0, 0.0]);
             let rel = rate / theory - 1.0;
@@ -118,13 +139,73 @@ fn spin_down_at_each_conventions_lever_f64() {
     check_spin_down::<f64>();
 }
 
+/// `epsd2` after the spin-down: the sphere on the fixed sphere rocks on its rolling spring.
+/// Returns (measured period, 2π·√(I/k_r)), ms.
+fn epsd2_rocking<S: Scalar>() -> (f64, f64) {
+    let mut o = Owned::<S>::new(2, 2);
+    let mut spec = PairSpec::hertz_mindlin(0.5, 0.6, MU_R).with_conventions(EPSD2);
+    spec.terms.mindlin_tangential = false;
+    let (mut w, pod, _) = pod_steel_world(&mut o, spec);
+    w.set_gravity_m_s2([0.0, 0.0, -G]).unwrap();
+    let base = w
+        .add_sphere(SphereSpec::at_rest(pod, R_M, [0.0, 0.0, 0.0]))
+        .unwrap();
+    w.set_body_kinematic(base).unwrap();
+    let top = w
+        .add_sphere(SphereSpec::at_rest(pod, R_M, [0.0, 0.0, 2.0 * R_M + 1e-7]))
+        .unwrap();
+    w.set_timestep_s(DT_S).unwrap();
+    w.run(SETTLE_STEPS).unwrap();
+    // A small spin, stopped by the spring within a few steps: then it rocks.
+    w.set_body_velocity(top, [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    w.run(RATE_FROM_STEP).unwrap();
+    // Times (ms) at which ω_y changes sign, over ten periods.
+    let dt_ms = DT_S * 1e3;
+    let mut crossings = Vec::new();
+    let mut last = w.body(top).angular_velocity.y.to_f64();
+    let mut step = 0u64;
+    while crossings.len() < 21 {
+        w.step().unwrap();
+        step += 1;
+        let now = w.body(top).angular_velocity.y.to_f64();
+        if (now > 0.0) != (last > 0.0) {
+            // Linear interpolation between the two steps.
+            crossings.push((step as f64 - now / (now - last)) * dt_ms);
+        }
+        last = now;
+        assert!(step < 200_000, "no rocking");
+    }
+    let period = (crossings[20] - crossings[0]) / 10.0;
+    let r = R_M * 1e3;
+    let overlap = 2.0 * r - w.body(top).position.z.to_f64();
+    let r_star = r / 2.0;
+    let g_star = w.pair(pod, pod).unwrap().g_star_mpa;
+    let k_r = 8.0 * g_star * (r_star * overlap).sqrt() * r_star * r_star; // N·mm/rad
+    let inertia = 1.0 / w.body(top).inv_inertia.y.to_f64(); // g·mm²
+    (period, 2.0 * std::f64::consts::PI * (inertia / k_r).sqrt())
+}
+
+#[test]
+fn epsd2_spring_rocks_at_its_stiffness() {
+    for (name, (period, theory)) in [
+        ("fixed", epsd2_rocking::<Fx>()),
+        ("f64", epsd2_rocking::<f64>()),
+    ] {
+        let rel = period / theory - 1.0;
+        println!("{name} epsd2 rocking: {period:.6} ms, theory {theory:.6} ms ({rel:+.2e})");
+        assert!(rel.abs() < PERIOD_TOLERANCE, "{name}: {period} vs {theory}");
+    }
+}
+
 /// Torsion: a spin about the contact normal. LIGGGHTS removes the normal part of its rolling
 /// torque, so the spin is kept bit for bit; EDEM's torque brakes it at the rolling rate.
 #[test]
 fn torsion_kept_by_liggghts_braked_by_edem() {
     let spin = [0.0, 0.0, 20.0];
-    let (rate, _) = spin_down::<Fx>(Conventions::LIGGGHTS, Support::Floor, spin);
-    assert_eq!(rate, 0.0, "LIGGGHTS' convention braked a pure twist");
+    for conventions in [Conventions::LIGGGHTS, EPSD2] {
+        let (rate, _) = spin_down::<Fx>(conventions, Support::Floor, spin);
+        assert_eq!(rate, 0.0, "{conventions:?} braked a pure twist");
+    }
     let (rate, theory) = spin_down::<Fx>(Conventions::EDEM, Support::Floor, spin);
     assert!(
         (rate / theory - 1.0).abs() < RATE_TOLERANCE,
@@ -169,8 +250,10 @@ fn collide<S: Scalar>(conventions: Conventions) -> (f64, f64) {
 #[test]
 fn liggghts_pair_torques_conserve_angular_momentum() {
     for (name, (before, after)) in [
-        ("fixed", collide::<Fx>(Conventions::LIGGGHTS)),
-        ("f64", collide::<f64>(Conventions::LIGGGHTS)),
+        ("fixed cdt", collide::<Fx>(Conventions::LIGGGHTS)),
+        ("f64 cdt", collide::<f64>(Conventions::LIGGGHTS)),
+        ("fixed epsd2", collide::<Fx>(EPSD2)),
+        ("f64 epsd2", collide::<f64>(EPSD2)),
     ] {
         let rel = (after / before - 1.0).abs();
         println!("{name} LIGGGHTS: L {before:.9e} → {after:.9e} ({rel:.1e})");
@@ -181,4 +264,40 @@ fn liggghts_pair_torques_conserve_angular_momentum() {
     println!("f64 EDEM: L {before:.9e} → {after:.9e} ({rel:.1e})");
     // Both spins are braked: the total falls by a visible fraction.
     assert!(rel > 1e-3, "EDEM's torques should not conserve L: {rel}");
+}
+
+/// `epsd2` keeps a torque per contact: a world without an effect-history arena refuses the
+/// pair (rather than dropping the torque each step), and the core's EPSD effect, a second
+/// rolling spring, cannot be added on top of it.
+#[test]
+fn epsd2_needs_an_effect_arena_and_excludes_the_epsd_effect() {
+    let spec = PairSpec::hertz_mindlin(0.5, 0.6, MU_R).with_conventions(EPSD2);
+    assert!(spec.needs_effect_history());
+    assert!(!PairSpec::hertz_mindlin(0.5, 0.6, 0.0)
+        .with_conventions(EPSD2)
+        .needs_effect_history());
+    let mut bare = Owned::<Fx>::with_lengths(StorageLengths::for_spheres(1, 1));
+    let mut w = World::new(bare.storage()).unwrap();
+    let pod = w.add_material(POD).unwrap();
+    let refused = w.set_pair(pod, pod, spec).unwrap_err();
+    assert!(
+        matches!(
+            refused,
+            SetupError::Capacity {
+                kind: CapacityKind::EffectHistory,
+                ..
+            }
+        ),
+        "{refused:?}"
+    );
+    let mut o = Owned::<Fx>::new(1, 1);
+    let (mut w, pod, _) = pod_steel_world(&mut o, spec);
+    let epsd = EffectSpec {
+        epsd_rolling_friction: 0.2,
+        ..EffectSpec::default()
+    };
+    assert!(matches!(
+        w.set_pair_effects(pod, pod, epsd),
+        Err(SetupError::IncompatibleEffects { .. })
+    ));
 }

@@ -200,11 +200,50 @@ fn pods_are_refused_and_an_edem_pair_is_warned_about() {
         out.to_str().unwrap(),
     ]);
     assert!(
-        stderr.contains("warning: pair pod-pod is in EDEM's conventions"),
+        stderr.contains("warning: pair pod-pod is read in conventions the deck does not have"),
         "{stderr}"
     );
     let input = std::fs::read_to_string(out.join("in.repose")).unwrap();
     assert!(input.contains("# WARNING: pair pod-pod"));
+}
+
+/// Pairs in LIGGGHTS' `epsd2` rolling convention give an `epsd2` deck without warnings; a
+/// study whose two pairs read rolling friction differently is written with the pod–pod
+/// pair's model (LIGGGHTS sets one for all pairs) and a warning naming the other pair.
+#[test]
+fn epsd2_pairs_give_an_epsd2_deck_and_mixed_pairs_a_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    let export = |name: &str, text: &str| {
+        let study = write(dir.path(), name, text);
+        let out = dir.path().join(name.replace(".toml", ""));
+        let (_, stderr) = run_ok(&[
+            "export",
+            "liggghts",
+            study.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        (
+            std::fs::read_to_string(out.join("in.repose")).unwrap(),
+            stderr,
+        )
+    };
+    let cdt = sphere_study(false);
+    let (input, stderr) = export("epsd2.toml", &cdt.replace("liggghts-cdt", "liggghts-epsd2"));
+    assert!(!stderr.contains("warning"), "{stderr}");
+    assert!(input.contains("rolling_friction epsd2"));
+    assert!(!input.contains("rolling_friction cdt"));
+    let mixed = cdt.replacen("liggghts-cdt", "liggghts-epsd2", 1);
+    let (input, stderr) = export("mixed.toml", &mixed);
+    assert!(
+        input.contains("rolling_friction epsd2"),
+        "the pod-pod pair's model"
+    );
+    assert!(
+        stderr.contains("warning: pair pod-wall is read in conventions the deck does not have"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("pair pod-pod"), "{stderr}");
 }
 
 /// The rig's own final pile, written as a LIGGGHTS dump, measures to the rig's angle.

@@ -216,10 +216,11 @@ fn bad_input_is_a_clear_error_with_exit_status_2() {
     assert!(!Path::new(vtk).exists(), "no output after a refusal");
 }
 
-/// The conventions of issue 18 on the command line: a pour long enough for contacts (3 000
-/// steps = 60 ms, the lowest spheres reach the floor) names them in its JSON line, and
-/// LIGGGHTS' rolling convention changes the bits, while with rolling friction off the rolling
-/// convention has nothing to act on and the bits are EDEM's.
+/// The conventions of issue 18 on the command line: a pour long enough for rolling contacts
+/// (6 000 steps = 120 ms: at 3 000 the first spheres touch the floor without spinning, and no
+/// convention has a torque to give) names them in its JSON line, and each rolling convention
+/// changes the bed's motion (its kinetic energy, not only its bits), while with rolling
+/// friction off the rolling convention has nothing to act on and the bits are EDEM's.
 #[test]
 fn conventions_are_named_and_change_the_bed_only_through_rolling_friction() {
     let long = |extra: &[&str]| {
@@ -228,7 +229,7 @@ fn conventions_are_named_and_change_the_bed_only_through_rolling_friction() {
             "--particles",
             "200",
             "--steps",
-            "3000",
+            "6000",
             "--dt",
             "2e-5",
         ];
@@ -242,6 +243,12 @@ fn conventions_are_named_and_change_the_bed_only_through_rolling_friction() {
     let liggghts = long(&["--rolling-convention", "liggghts-cdt"]);
     assert_eq!(liggghts["rolling_convention"], "liggghts-cdt");
     assert_ne!(liggghts["digest"], edem["digest"], "no contact rolled");
+    assert_ne!(liggghts["kinetic_energy_j"], edem["kinetic_energy_j"]);
+    // epsd2 keeps a torque per contact (an effect-history arena the pour must allocate).
+    let epsd2 = long(&["--rolling-convention", "liggghts-epsd2"]);
+    assert_eq!(epsd2["rolling_convention"], "liggghts-epsd2");
+    assert_ne!(epsd2["kinetic_energy_j"], liggghts["kinetic_energy_j"]);
+    assert_ne!(epsd2["kinetic_energy_j"], edem["kinetic_energy_j"]);
     let off_edem = long(&["--no-rolling-friction"]);
     let off_liggghts = long(&[
         "--no-rolling-friction",
@@ -251,9 +258,15 @@ fn conventions_are_named_and_change_the_bed_only_through_rolling_friction() {
     assert_eq!(off_edem["rolling_friction"], false);
     assert_ne!(off_edem["digest"], edem["digest"]);
     assert_eq!(off_liggghts["digest"], off_edem["digest"]);
+    let off_epsd2 = long(&[
+        "--no-rolling-friction",
+        "--rolling-convention",
+        "liggghts-epsd2",
+    ]);
+    assert_eq!(off_epsd2["digest"], off_edem["digest"]);
     assert_refused(
         &["pour", "--rolling-convention", "cdt"],
-        "edem, liggghts-cdt",
+        "edem, liggghts-cdt, liggghts-epsd2",
     );
     assert_refused(
         &["pour", "--friction-convention", "liggghts-cdt"],

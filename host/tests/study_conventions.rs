@@ -76,7 +76,10 @@ fn a_misspelt_convention_is_refused_with_the_accepted_names_and_line() {
         + 1;
     let err = load(&text).unwrap_err();
     assert!(err.contains("'liggghts'"), "{err}");
-    assert!(err.contains("accepted: edem, liggghts-cdt"), "{err}");
+    assert!(
+        err.contains("accepted: edem, liggghts-cdt, liggghts-epsd2"),
+        "{err}"
+    );
     assert!(
         err.contains(&format!(":{line}:")),
         "line {line} not in {err}"

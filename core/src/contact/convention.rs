@@ -6,6 +6,7 @@
 //! | convention | rolling torque | Coulomb test |
 //! |---|---|---|
 //! | [`RollingConvention::Edem`], [`FrictionConvention::Edem`] (default) | T_i = −μr·Fn·L_i·ω̂_i on each body, Fn the clipped total normal force, L_i the lever from body i's centre of mass (seed 000 eq. (7)) | \|spring + damping\| ≤ μs·Fn; the history is rescaled when the spring alone exceeds it |
+//! | [`RollingConvention::LiggghtsEpsd2`] | M ← M + k_t·R*²·dt·ŵ_t, \|M\| ≤ μr·Fn·R*, T_j = −T_i = M, k_t = 8G*a, ŵ_t the tangent part of ω_i − ω_j, Fn the clipped total normal force (`rolling_model_epsd2.h`) | (rolling only; combine with either Coulomb test) |
 //! | [`RollingConvention::LiggghtsCdt`], [`FrictionConvention::Liggghts`] | T_i = −T_j = −μr·F_el·R*·ŵ, ŵ the unit of ω_i − ω_j less its part along the normal, F_el = (4/3)E*·a·α, R* = R_iR_j/(R_i+R_j) (wall: R_i, ω_i) (`rolling_model_cdt.h`) | the spring alone: if St·\|δt\| > μs·Fn the force is the spring scaled to μs·Fn with no damping, else spring + damping, unbounded (`tangential_model_history.h`) |
 //!
 //! ```
@@ -32,6 +33,11 @@ pub enum RollingConvention {
     /// no torsion part, equal and opposite torques, no cap
     /// ([`crate::contact::RollingCdtLiggghts`]).
     LiggghtsCdt,
+    /// LIGGGHTS 3.8's `rolling_friction epsd2`: an incremental spring torque k_t·R*²·dt·ω_t on
+    /// the relative spin, capped at μr·Fn·R*, equal and opposite, no dashpot
+    /// ([`crate::contact::RollingEpsd2Liggghts`]). Needs an effect-history arena
+    /// ([`crate::body::StorageLengths::with_effects`]) for the stored torque.
+    LiggghtsEpsd2,
 }
 
 /// How the Coulomb limit bounds the tangential force.
@@ -100,6 +106,7 @@ impl RollingConvention {
         match self {
             RollingConvention::Edem => "edem",
             RollingConvention::LiggghtsCdt => "liggghts-cdt",
+            RollingConvention::LiggghtsEpsd2 => "liggghts-epsd2",
         }
     }
 }
@@ -120,9 +127,10 @@ impl FromStr for RollingConvention {
         match s {
             "edem" => Ok(RollingConvention::Edem),
             "liggghts-cdt" => Ok(RollingConvention::LiggghtsCdt),
+            "liggghts-epsd2" => Ok(RollingConvention::LiggghtsEpsd2),
             _ => Err(UnknownConvention {
                 kind: "rolling",
-                accepted: "edem, liggghts-cdt",
+                accepted: "edem, liggghts-cdt, liggghts-epsd2",
             }),
         }
     }
@@ -175,7 +183,11 @@ mod tests {
 
     #[test]
     fn names_round_trip() {
-        for r in [RollingConvention::Edem, RollingConvention::LiggghtsCdt] {
+        for r in [
+            RollingConvention::Edem,
+            RollingConvention::LiggghtsCdt,
+            RollingConvention::LiggghtsEpsd2,
+        ] {
             assert_eq!(r.name().parse::<RollingConvention>(), Ok(r));
         }
         for f in [FrictionConvention::Edem, FrictionConvention::Liggghts] {
@@ -185,7 +197,7 @@ mod tests {
         assert!(!Conventions::LIGGGHTS.is_edem());
         assert_eq!(
             "cdt".parse::<RollingConvention>().unwrap_err().accepted,
-            "edem, liggghts-cdt"
+            "edem, liggghts-cdt, liggghts-epsd2"
         );
     }
 }

@@ -1,5 +1,6 @@
 //! Contact history: the accumulated tangential displacement δt of each live contact, and
-//! the state of the optional terms that need one (α_max, the rolling angle θr, the JKR neck).
+//! the state of the optional terms that need one (α_max, the rolling angle θr, LIGGGHTS'
+//! rolling spring torque, the JKR neck).
 //!
 //! History is stored beside the neighbour-list entries ([`crate::step::neighbour_list`]): a
 //! [`NeighbourEntry`] holds the partner key and δt, which every Hertz–Mindlin contact needs;
@@ -36,6 +37,9 @@ pub struct ContactState<S> {
     /// Accumulated relative rolling rotation θr of i relative to j, rad, in the tangent plane
     /// (only kept by the EPSD rolling term, [`super::RollingEpsd`]; zero otherwise).
     pub roll_angle: Vec3<S>,
+    /// Spring torque M of LIGGGHTS' `epsd2` rolling resistance, N·mm (only kept by
+    /// [`super::RollingEpsd2Liggghts`]; zero otherwise).
+    pub roll_torque: Vec3<S>,
     /// `true` while a JKR contact ([`super::CohesionJkr`]) is attached: it then holds down to
     /// the negative overlap of the JKR separation. `false` otherwise.
     pub jkr_attached: bool,
@@ -58,6 +62,8 @@ pub struct EffectHistory<S> {
     pub max_overlap: S,
     /// θr, rad ([`ContactState::roll_angle`]).
     pub roll_angle: Vec3<S>,
+    /// M, N·mm ([`ContactState::roll_torque`]).
+    pub roll_torque: Vec3<S>,
     /// The JKR neck flag ([`ContactState::jkr_attached`]).
     pub jkr_attached: bool,
 }
@@ -71,6 +77,7 @@ impl<S: Scalar> ContactState<S> {
             delta: entry.delta,
             max_overlap: e.max_overlap,
             roll_angle: e.roll_angle,
+            roll_torque: e.roll_torque,
             jkr_attached: e.jkr_attached,
         }
     }
@@ -81,6 +88,7 @@ impl<S: Scalar> ContactState<S> {
         EffectHistory {
             max_overlap: self.max_overlap,
             roll_angle: self.roll_angle,
+            roll_torque: self.roll_torque,
             jkr_attached: self.jkr_attached,
         }
     }

@@ -13,6 +13,7 @@
 //! | tangential | [`CoulombLimit`] | `coulomb.rs` | \|Ft\| ≤ μs·Fn, history rescaled |
 //! | rolling | [`RollingCdt`] | `rolling_cdt.rs` | T = −μr·Fn·Ri·ω̂i (eq. 7, EDEM CDT) |
 //! | rolling (LIGGGHTS convention) | [`RollingCdtLiggghts`] | `rolling_cdt_liggghts.rs` | T_j = −T_i = μr·F_el·R*·ŵ_t, ŵ the unit of ωi − ωj (LIGGGHTS `rolling_friction cdt`) |
+//! | rolling (LIGGGHTS convention) | [`RollingEpsd2Liggghts`] | `rolling_epsd2_liggghts.rs` | M ← M + k_t·R*²·dt·ω_t, \|M\| ≤ μr·Fn·R*, T_j = −T_i = M (LIGGGHTS `rolling_friction epsd2`) |
 //! | normal (optional) | [`ViscoelasticNormal`] | `viscoelastic_normal.rs` | Fn_v = −(4/3)E*·A·a·vn (Brilliantov 1996), before the clip |
 //! | normal (optional) | [`CohesionJkr`] | `cohesion_jkr.rs` | replaces Hertz by 4E*a³/(3R*), a from δ = a²/R* − √(2πΓa/E*) (JKR 1971); adhesive part below |
 //! | normal (optional) | [`HystereticNormal`] | `hysteretic_normal.rs` | unloading F_max((α−λα_max)/(α_max−λα_max))^{3/2} (after Walton & Braun 1986) |
@@ -54,6 +55,7 @@ pub mod normal_damping;
 pub mod rolling_cdt;
 pub mod rolling_cdt_liggghts;
 pub mod rolling_epsd;
+pub mod rolling_epsd2_liggghts;
 pub mod tangential_damping;
 pub mod viscoelastic_normal;
 
@@ -69,6 +71,7 @@ pub use normal_damping::NormalDamping;
 pub use rolling_cdt::RollingCdt;
 pub use rolling_cdt_liggghts::RollingCdtLiggghts;
 pub use rolling_epsd::RollingEpsd;
+pub use rolling_epsd2_liggghts::RollingEpsd2Liggghts;
 pub use tangential_damping::TangentialDamping;
 pub use viscoelastic_normal::ViscoelasticNormal;
 

@@ -44,6 +44,9 @@ impl<S: Scalar> World<'_, S> {
                 if c.state.roll_angle != Vec3::ZERO {
                     h.v(c.state.roll_angle);
                 }
+                if c.state.roll_torque != Vec3::ZERO {
+                    h.v(c.state.roll_torque);
+                }
                 if c.state.jkr_attached {
                     h.u64(1);
                 }

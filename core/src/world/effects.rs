@@ -13,7 +13,8 @@ use crate::num::Scalar;
 impl<S: Scalar> World<'_, S> {
     /// Switch the optional effects of the (already set) pair `a`–`b` (symmetric).
     /// Errors: unknown material, pair not yet set, negative or non-finite parameters, a
-    /// constant outside the fixed-point range, or an effect that keeps history in a world
+    /// constant outside the fixed-point range, EPSD on a pair already in LIGGGHTS' `epsd2`
+    /// rolling convention (two rolling springs), or an effect that keeps history in a world
     /// without an effect-history arena ([`crate::body::StorageLengths::with_effects`]).
     pub fn set_pair_effects(
         &mut self,
@@ -52,6 +53,12 @@ impl<S: Scalar> World<'_, S> {
         let mut p = self.pairs[ia][ib];
         if !p.defined {
             return Err(SetupError::UnknownMaterial { id: b.0 });
+        }
+        if mu_r > 0.0 && p.rolling_epsd2.on {
+            return Err(SetupError::IncompatibleEffects {
+                a: "EPSD rolling resistance",
+                b: "the liggghts-epsd2 rolling convention",
+            });
         }
         p.viscoelastic = ViscoelasticNormal::new(tau, p.e_star_mpa);
         p.cohesion = CohesionSjkr::new(k);

@@ -58,6 +58,9 @@ impl<S: Scalar> World<'_, S> {
     }
 
     /// Set the interaction of materials `a` and `b` (symmetric; `a == b` allowed).
+    /// Errors: an invalid spec, an unknown material, a constant outside the fixed-point range,
+    /// or LIGGGHTS' `epsd2` rolling convention (which keeps a torque per contact) in a world
+    /// without an effect-history arena ([`crate::body::StorageLengths::with_effects`]).
     pub fn set_pair(
         &mut self,
         a: MaterialId,
@@ -80,6 +83,12 @@ impl<S: Scalar> World<'_, S> {
             return Err(SetupError::NotRepresentable {
                 what: "pair constant",
                 value: p.g_star_mpa * 8.0,
+            });
+        }
+        if p.needs_effect_history() && !self.list.has_effect_history() {
+            return Err(SetupError::Capacity {
+                kind: CapacityKind::EffectHistory,
+                capacity: 0,
             });
         }
         self.pairs[a.0 as usize][b.0 as usize] = p;

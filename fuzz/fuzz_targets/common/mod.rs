@@ -77,23 +77,24 @@ pub struct PairIn {
     pub friction: Real,
     pub rolling: Real,
     /// Term switches, one bit each (bits 0–5: a set bit turns that term off); bits 6 and 7
-    /// put rolling friction and the Coulomb limit in LIGGGHTS' conventions.
-    pub terms: u8,
+    /// put rolling friction and the Coulomb limit in LIGGGHTS' conventions, and bit 8 makes
+    /// LIGGGHTS' rolling `epsd2` instead of `cdt`.
+    pub terms: u16,
 }
 
 impl PairIn {
     /// Typical e 0.335, μs 0.854, μr 0.346 (pod–pod).
     pub fn spec(&self) -> PairSpec {
-        let bit = |k: u8| self.terms & (1 << k) == 0; // all on for terms = 0
+        let bit = |k: u16| self.terms & (1 << k) == 0; // all on for terms = 0
         PairSpec {
             restitution: self.restitution.get(0.335),
             friction: self.friction.get(0.854),
             rolling_friction: self.rolling.get(0.346),
             conventions: arachis_core::contact::Conventions {
-                rolling: if self.terms & (1 << 6) != 0 {
-                    RollingConvention::LiggghtsCdt
-                } else {
-                    RollingConvention::Edem
+                rolling: match (self.terms & (1 << 6) != 0, self.terms & (1 << 8) != 0) {
+                    (false, _) => RollingConvention::Edem,
+                    (true, false) => RollingConvention::LiggghtsCdt,
+                    (true, true) => RollingConvention::LiggghtsEpsd2,
                 },
                 friction: if self.terms & (1 << 7) != 0 {
                     FrictionConvention::Liggghts

@@ -69,8 +69,13 @@ pub struct Args {
     #[arg(long, default_value_t = bench_bed::DEFAULT_SEED)]
     pub seed: u64,
     /// How both pairs read rolling friction: EDEM's (each body's own spin, the total normal
-    /// force) or LIGGGHTS' `rolling_friction cdt` (relative spin, R*, elastic force).
-    #[arg(long, value_name = "edem|liggghts-cdt", default_value = "edem")]
+    /// force), LIGGGHTS' `rolling_friction cdt` (relative spin, R*, elastic force) or
+    /// LIGGGHTS' `rolling_friction epsd2` (a spring torque on the relative spin, capped).
+    #[arg(
+        long,
+        value_name = "edem|liggghts-cdt|liggghts-epsd2",
+        default_value = "edem"
+    )]
     pub rolling_convention: RollingConvention,
     /// How both pairs apply the Coulomb limit: EDEM's (spring plus damping capped) or
     /// LIGGGHTS' `tangential history` (the spring alone tested, no damping while sliding).
@@ -210,7 +215,14 @@ fn pour<S: Scalar>(args: &Args) -> anyhow::Result<(PourReport, Vec<ParticleFrame
         particles: args.particles,
         seed: args.seed,
     };
-    let mut arenas = OwnedStorage::<S>::new(bed.storage_lengths());
+    let (pod_pod, pod_steel) = pairs(args);
+    let lengths = bed.storage_lengths();
+    let lengths = if pod_pod.needs_effect_history() || pod_steel.needs_effect_history() {
+        lengths.with_effects()
+    } else {
+        lengths
+    };
+    let mut arenas = OwnedStorage::<S>::new(lengths);
     let mut stepper = Stepper::<S>::new(default_threads())?;
     let bar = progress_bar(args.steps);
     bar.set_message("inserting");
@@ -218,7 +230,6 @@ fn pour<S: Scalar>(args: &Args) -> anyhow::Result<(PourReport, Vec<ParticleFrame
     let mut world = bed
         .build_with_timestep(arenas.storage(), args.dt)
         .context("cannot set up the bench bed")?;
-    let (pod_pod, pod_steel) = pairs(args);
     BenchBed::set_pairs(&mut world, pod_pod, pod_steel)
         .context("cannot set the bench bed's pairs")?;
     bar.set_message(format!("dt {:.3e} ms, {}", args.dt * TIME_S_TO_MS, S::NAME));

@@ -7,9 +7,11 @@
 //!   `read_data` file (`particles.data`: diameter, density, position; all falling at the
 //!   fill speed);
 //! - the same materials (E = 2G(1 + ν), ν, ρ) and pairs (e, μs, μr), with LIGGGHTS'
-//!   `tangential history rolling_friction cdt` and `limitForce on` (Arachis never lets the
-//!   normal force attract); a pair the study keeps in EDEM's conventions is written with the
-//!   same numbers and a warning, since LIGGGHTS has no EDEM reading (`docs/conventions.md`);
+//!   `tangential history`, `rolling_friction cdt` or `epsd2` (the pairs' rolling convention)
+//!   and `limitForce on` (Arachis never lets the normal force attract); a pair the study keeps
+//!   in EDEM's conventions, or in another rolling convention than the deck's one (LIGGGHTS sets
+//!   it for all pairs), is written with the same numbers and a warning
+//!   (`docs/conventions.md`);
 //! - the floor as a primitive plane and the cylinder as a moving mesh (`cylinder.stl`, a
 //!   prism of [`CYLINDER_SEGMENTS`] faces with its vertices on the rig's cylinder), lifted
 //!   by `fix move/mesh`;
@@ -26,7 +28,7 @@
 use std::f64::consts::PI;
 use std::fmt::Write as _;
 
-use arachis_core::contact::Conventions;
+use arachis_core::contact::{FrictionConvention, RollingConvention};
 use arachis_core::pair::PairSpec;
 use arachis_core::timestep::rayleigh_time_s;
 use arachis_core::units::LENGTH_M_TO_MM;
@@ -62,14 +64,37 @@ pub struct Deck {
     pub dt_s: f64,
 }
 
-/// A warning when the study reads pair `name` in conventions LIGGGHTS does not have.
-fn pair_warning(name: &str, pair: &PairSpec) -> Option<String> {
-    (pair.conventions != Conventions::LIGGGHTS).then(|| {
+/// LIGGGHTS' name of a rolling convention (`rolling_friction NAME`); `None` for EDEM's, which
+/// LIGGGHTS does not have.
+fn liggghts_rolling_model(rolling: RollingConvention) -> Option<&'static str> {
+    match rolling {
+        RollingConvention::Edem => None,
+        RollingConvention::LiggghtsCdt => Some("cdt"),
+        RollingConvention::LiggghtsEpsd2 => Some("epsd2"),
+    }
+}
+
+/// The deck's one rolling model (LIGGGHTS' `pair_style` sets it for every pair): the pod–pod
+/// pair's, else the pod–wall pair's, else `cdt`.
+fn deck_rolling_model(inputs: &RunInputs) -> &'static str {
+    liggghts_rolling_model(inputs.pod_pod.conventions.rolling)
+        .or(liggghts_rolling_model(inputs.pod_wall.conventions.rolling))
+        .unwrap_or("cdt")
+}
+
+/// A warning when the deck cannot read pair `name` as the study does: a convention LIGGGHTS
+/// does not have (EDEM's), or a rolling model other than the deck's `rolling_model`.
+fn pair_warning(name: &str, pair: &PairSpec, rolling_model: &str) -> Option<String> {
+    let rolling = liggghts_rolling_model(pair.conventions.rolling);
+    let friction_ok = pair.conventions.friction == FrictionConvention::Liggghts;
+    (rolling != Some(rolling_model) || !friction_ok).then(|| {
         format!(
-            "pair {name} is in EDEM's conventions (rolling {}, friction {}), which LIGGGHTS does \
-             not have: the deck gives LIGGGHTS the same e, μs, μr, read in its own conventions, \
-             so expect another pile (docs/conventions.md); set rolling_convention = \
-             \"liggghts-cdt\" and friction_convention = \"liggghts\" to compare like with like",
+            "pair {name} is read in conventions the deck does not have (rolling {}, friction {}; \
+             the deck: rolling_friction {rolling_model}, tangential history): LIGGGHTS gets the \
+             same e, μs, μr, read in its own conventions, so expect another pile \
+             (docs/conventions.md); give both pairs rolling_convention = \"liggghts-cdt\" (or \
+             both \"liggghts-epsd2\") and friction_convention = \"liggghts\" to compare like \
+             with like",
             pair.conventions.rolling, pair.conventions.friction
         )
     })
@@ -105,9 +130,10 @@ pub fn repose_deck(inputs: &RunInputs, seed: u64, source: &str) -> Result<Deck, 
     let radius_mm = 0.5 * layout.diameter_mm;
     let half_width_mm = radius_mm * (1.0 + BOX_HALF_WIDTH_RADII);
     let box_top_mm = 2.0 * layout.cylinder_length_mm + radius_mm;
+    let rolling_model = deck_rolling_model(inputs);
     let warnings: Vec<String> = [("pod-pod", &inputs.pod_pod), ("pod-wall", &inputs.pod_wall)]
         .into_iter()
-        .filter_map(|(name, p)| pair_warning(name, p))
+        .filter_map(|(name, p)| pair_warning(name, p, rolling_model))
         .collect();
 
     let mut data = format!(
@@ -141,7 +167,7 @@ pub fn repose_deck(inputs: &RunInputs, seed: u64, source: &str) -> Result<Deck, 
         format!("{pp} {pw} {pw} {pw}")
     };
     // For walls LIGGGHTS wants the settings (limitForce) after the wall's geometry.
-    let model = "model hertz tangential history rolling_friction cdt";
+    let model = format!("model hertz tangential history rolling_friction {rolling_model}");
     let settings = "limitForce on";
     let mut input = String::new();
     let _ = write!(

@@ -77,7 +77,7 @@ pub fn run(
 ) -> Result<Observation, ExperimentError> {
     let template = inputs.template(inputs.typical_class());
     let e = |s| setup_error(EXPERIMENT, s);
-    let mut arena = Arena::new(1, template.spheres.len());
+    let mut arena = Arena::new(inputs, 1, template.spheres.len());
     let mut w = arena.world(EXPERIMENT)?;
     let mats = add_materials(&mut w, inputs, EXPERIMENT)?;
     let (low, high) =

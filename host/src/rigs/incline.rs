@@ -81,7 +81,7 @@ pub fn run(
 ) -> Result<Observation, ExperimentError> {
     let kind = inputs.typical_class();
     let template = inputs.template(kind);
-    let mut arena = Arena::new(1, template.spheres.len());
+    let mut arena = Arena::new(inputs, 1, template.spheres.len());
     let mut w = arena.world(EXPERIMENT)?;
     let mats = add_materials(&mut w, inputs, EXPERIMENT)?;
     w.add_wall(WallSpec::fixed(

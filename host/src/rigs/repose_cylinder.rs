@@ -210,7 +210,7 @@ pub fn run(
     let radius_mm = 0.5 * diameter_mm;
     let sphere_total = layout.sphere_total;
 
-    let mut arena = Arena::new(n, sphere_total);
+    let mut arena = Arena::new(inputs, n, sphere_total);
     let mut w = arena.world(EXPERIMENT)?;
     let mats = add_materials(&mut w, inputs, EXPERIMENT)?;
     let e = |s| setup_error(EXPERIMENT, s);

@@ -48,8 +48,10 @@ pub struct Pair {
     /// `rolling_convention`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rolling_friction: Option<f64>,
-    /// How μr is read: `edem` (the default; T_i = −μr·Fn·L_i·ω̂_i, seed 000 eq. (7)) or
-    /// `liggghts-cdt` (LIGGGHTS' `rolling_friction cdt`: relative spin, R*, elastic force).
+    /// How μr is read: `edem` (the default; T_i = −μr·Fn·L_i·ω̂_i, seed 000 eq. (7)),
+    /// `liggghts-cdt` (LIGGGHTS' `rolling_friction cdt`: relative spin, R*, elastic force) or
+    /// `liggghts-epsd2` (LIGGGHTS' `rolling_friction epsd2`: a spring torque k_t·R*² on the
+    /// relative spin, capped at μr·Fn·R*).
     /// `docs/conventions.md` compares them and says when a μr converts.
     #[serde(
         default,

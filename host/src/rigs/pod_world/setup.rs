@@ -230,12 +230,18 @@ impl RunInputs {
 pub struct Arena(OwnedStorage<Fx>);
 
 impl Arena {
-    /// Room for `bodies` bodies made of `spheres` spheres in all.
-    pub fn new(bodies: usize, spheres: usize) -> Self {
-        Arena(OwnedStorage::new(StorageLengths::for_spheres(
-            bodies.max(1),
-            spheres.max(1),
-        )))
+    /// Room for `bodies` bodies made of `spheres` spheres in all, and for the contact state of
+    /// `inputs`' pairs (an effect-history arena when a pair keeps one, as LIGGGHTS' `epsd2`
+    /// rolling convention does).
+    pub fn new(inputs: &RunInputs, bodies: usize, spheres: usize) -> Self {
+        let lengths = StorageLengths::for_spheres(bodies.max(1), spheres.max(1));
+        let effects =
+            inputs.pod_pod.needs_effect_history() || inputs.pod_wall.needs_effect_history();
+        Arena(OwnedStorage::new(if effects {
+            lengths.with_effects()
+        } else {
+            lengths
+        }))
     }
 
     /// A world over this storage.
