@@ -2,13 +2,12 @@
 # The repose angle by cylinder lifting on a pile of spheres, Arachis beside LIGGGHTS 3.8, over
 # several placement seeds (issue 18: mean angles within 1°).
 #
-# The study is the shipped seed-000 study (testdata/peanut-pods-saline/study.toml) with its
-# pods replaced by spheres of R 4 mm (the pod material, DESIGN §8) and both pairs in
-# LIGGGHTS' conventions (rolling_convention = "liggghts-cdt", friction_convention =
-# "liggghts"; pod-pod e, μs, μr held at the centres of seed 000's ranges), written into a
-# temporary folder. Its quick mode holds --spheres spheres, in a cylinder whose diameter makes
-# the fill about as deep as it is wide (D³ = 4·N·V/(0.6π), V a sphere's volume, 0.6 the
-# packing fraction), as the seed's 900 pods fill its 200 mm cylinder.
+# The study (scripts/sphere-study.py) is the shipped seed-000 study with its pods replaced by
+# spheres of R 4 mm (the pod material, DESIGN §8) and both pairs in LIGGGHTS' conventions
+# (rolling_convention = "liggghts-cdt", friction_convention = "liggghts"; pod-pod e, μs, μr
+# held at the centres of seed 000's ranges), written into a temporary folder. Its quick mode
+# holds --spheres spheres, in a cylinder whose diameter makes the fill about as deep as it is
+# wide, as the seed's 900 pods fill its 200 mm cylinder.
 #
 # For each seed k = 1..--seeds:
 #   Arachis:  arachis simulate --study S --seed k --json repose   (its angle);
@@ -43,34 +42,8 @@ trap 'rm -rf "$work"' EXIT
 load_before=$(cut -d' ' -f1-3 /proc/loadavg)
 start=$(date +%s)
 
-python3 - "$PWD/testdata/peanut-pods-saline/study.toml" "$work/study.toml" "$spheres" <<'EOF'
-import math, sys
-source, target, n = sys.argv[1], sys.argv[2], int(sys.argv[3])
-RADIUS_MM = 4.0
-PACKING = 0.6
-text = open(source).read()
-start, end = text.index("[pods]"), text.index("# Contact pairs.")
-text = (text[:start] + f'[spheres]\nmaterial = "pod"\nradius_mm = {RADIUS_MM}\n\n' + text[end:])
-for pair in ("pod-pod", "pod-steel"):
-    header = f'[pairs."{pair}"]\n'
-    text = text.replace(header, header + 'rolling_convention = "liggghts-cdt"\n'
-                        'friction_convention = "liggghts"\n', 1)
-volume = 4.0 / 3.0 * math.pi * RADIUS_MM ** 3
-diameter = (4.0 * n * volume / (PACKING * math.pi)) ** (1.0 / 3.0)
-def replace_value(text, key, value):
-    i = text.index(key + " = ")
-    j = text.index("\n", i)
-    return text[:i] + f"{key} = {value}" + text[j:]
-text = replace_value(text, "cylinder_diameter_mm", f"{diameter:.1f}")
-text = replace_value(text, "cylinder_height_mm", f"{1.5 * diameter:.1f}")
-# The quick mode is the pile of n spheres; the full mode the same, so nothing is rescaled.
-quick = text.index("[plan.modes.quick]")
-text = text[:quick] + replace_value(text[quick:], "pods", n)
-full = text.index("[plan.modes.full]")
-text = text[:full] + replace_value(text[full:], "pods", n)
-open(target, "w").write(text)
-print(f"study: {n} spheres of R {RADIUS_MM} mm, cylinder {diameter:.1f} mm", file=sys.stderr)
-EOF
+scripts/sphere-study.py testdata/peanut-pods-saline/study.toml "$work/study.toml" \
+    --spheres "$spheres"
 
 : > "$work/angles.txt"
 for k in $(seq "$seeds"); do

@@ -207,6 +207,89 @@ fn pods_are_refused_and_an_edem_pair_is_warned_about() {
     assert!(input.contains("# WARNING: pair pod-pod"));
 }
 
+/// The incline deck: the rig's one sphere, DROP_GAP above the plate, its time step and its
+/// tilt schedule (gravity redefined every TILT_UPDATE_S at 5°/s); an experiment without a deck
+/// is refused with the list of those that have one, and writes nothing.
+#[test]
+fn the_incline_deck_holds_the_rigs_sphere_time_step_and_tilt_schedule() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = sphere_study(false).replace("liggghts-cdt", "liggghts-epsd2");
+    let study = write(dir.path(), "study.toml", &text);
+    let out = dir.path().join("deck");
+    let (stdout, stderr) = run_ok(&[
+        "export",
+        "liggghts",
+        study.to_str().unwrap(),
+        "--experiment",
+        "incline_slide",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!stderr.contains("warning"), "{stderr}");
+    assert!(stdout.contains("liggghts -in in.incline"), "{stdout}");
+    assert!(!out.join("cylinder.stl").exists());
+    let input = std::fs::read_to_string(out.join("in.incline")).unwrap();
+    let data = std::fs::read_to_string(out.join("particles.data")).unwrap();
+    let (json, _) = run_ok(&[
+        "simulate",
+        "--study",
+        study.to_str().unwrap(),
+        "--json",
+        "incline_slide",
+    ]);
+    let o: Value = serde_json::from_str(&json).unwrap();
+    let dt = o["observation"]["details"]["dt_s"].as_f64().unwrap();
+    let line = input.lines().find(|l| l.starts_with("timestep")).unwrap();
+    let deck_dt: f64 = line.split_whitespace().nth(1).unwrap().parse().unwrap();
+    assert_eq!(deck_dt, dt, "{line}");
+    // One sphere of 8 mm, pod density, at R + 0.05 mm, at rest.
+    assert!(data.contains(
+        "1 atoms
+2 atom types"
+    ));
+    let atom: Vec<f64> = data
+        .split(
+            "Atoms
+
+",
+        )
+        .nth(1)
+        .unwrap()
+        .lines()
+        .next()
+        .unwrap()
+        .split_whitespace()
+        .map(|x| x.parse().unwrap())
+        .collect();
+    assert_eq!(&atom[2..6], &[0.008, 582.36, 0.0, 0.0]);
+    assert!((atom[6] - 0.00405).abs() < 1e-15, "{atom:?}");
+    // Gravity turns every round(0.002 s / dt) steps; the rig's onset and confirmation.
+    let chunk = (0.002 / dt).round() as u64;
+    assert!(
+        input.contains(&format!("\nrun {chunk}\n")),
+        "no run of {chunk} steps"
+    );
+    assert!(input.contains("fix  gravi all gravity 9.81 vector ${sx} 0.0 ${sz}"));
+    assert!(input.contains("${moved} > 1e-4"));
+    assert!(input.contains("${moved} > 2e-3"));
+    assert!(input.contains("rolling_friction epsd2 limitForce on"));
+    // No deck for the compression test: refused with the rigs that have one, nothing written.
+    let none = dir.path().join("none");
+    let refused = arachis(&[
+        "export",
+        "liggghts",
+        study.to_str().unwrap(),
+        "--experiment",
+        "compression",
+        "--out",
+        none.to_str().unwrap(),
+    ]);
+    assert_eq!(refused.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&refused.stderr);
+    assert!(err.contains("repose, incline_slide"), "{err}");
+    assert!(!none.exists());
+}
+
 /// Pairs in LIGGGHTS' `epsd2` rolling convention give an `epsd2` deck without warnings; a
 /// study whose two pairs read rolling friction differently is written with the pod–pod
 /// pair's model (LIGGGHTS sets one for all pairs) and a warning naming the other pair.

@@ -1,25 +1,29 @@
-//! `arachis export liggghts STUDY --experiment repose --out DIR`: the study's rig as a
-//! LIGGGHTS 3.8 deck (`crate::export::liggghts`): `DIR/in.repose`, `DIR/particles.data` and
-//! `DIR/cylinder.stl`, each written atomically. Run it with `cd DIR && liggghts -in
-//! in.repose`; it writes `final.dump`, which `arachis lab repose-pile DIR/final.dump`
-//! measures as the rig measures its own pile. The seed, mode and `--set` values choose the
-//! run as for `arachis simulate`, so `simulate --seed K` and `export --seed K` start from the
-//! same particles.
+//! `arachis export liggghts STUDY --experiment NAME --out DIR`: the study's rig as a
+//! LIGGGHTS 3.8 deck (`crate::export::liggghts`), each file written atomically:
+//! - `repose`: `DIR/in.repose`, `DIR/particles.data` and `DIR/cylinder.stl`; run it with
+//!   `cd DIR && liggghts -in in.repose`; it writes `final.dump`, which `arachis lab
+//!   repose-pile DIR/final.dump` measures as the rig measures its own pile;
+//! - `incline_slide`: `DIR/in.incline` and `DIR/particles.data`; it writes `incline.txt`
+//!   with the slide angle read as the rig reads it.
+//!
+//! The seed, mode and `--set` values choose the run as for `arachis simulate`, so `simulate
+//! --seed K` and `export --seed K` start from the same particles.
 
 use std::path::PathBuf;
 
-use anyhow::{bail, Context};
+use anyhow::Context;
 use clap::Subcommand;
 
 use super::simulate::{pod_world, prepare, RunChoice, RunSelection};
-use crate::export::liggghts::repose_deck;
+use crate::export::liggghts::deck;
 use crate::rigs::pod_world::setup::RunInputs;
-use crate::rigs::pod_world::{Experiment, TemplateCache};
+use crate::rigs::pod_world::TemplateCache;
 
 /// The `export` targets.
 #[derive(Debug, Subcommand)]
 pub enum Target {
-    /// A LIGGGHTS 3.8 input deck of a study's rig (the repose rig; studies of [spheres]).
+    /// A LIGGGHTS 3.8 input deck of a study's rig (repose or incline_slide; studies of
+    /// [spheres]).
     Liggghts(Args),
 }
 
@@ -28,7 +32,7 @@ pub enum Target {
 pub struct Args {
     /// The study file (TOML); its particles must be `[spheres]`.
     pub study: PathBuf,
-    /// The experiment to export (today: repose).
+    /// The experiment to export: repose or incline_slide.
     #[arg(long, default_value = "repose")]
     pub experiment: String,
     /// Folder to write the deck into (created if missing).
@@ -48,12 +52,6 @@ pub fn run(target: Target) -> anyhow::Result<()> {
         choice: args.choice.clone(),
     };
     let (study, experiment, values, mode) = prepare(&selection)?;
-    if experiment != Experiment::Repose {
-        bail!(
-            "export liggghts writes the repose rig only (asked for {})",
-            experiment.name()
-        );
-    }
     let world = pod_world(&study, &selection)?;
     let seed = args.choice.seed.unwrap_or(world.simulation.random_seed);
     let condition = study.condition_of(experiment.name());
@@ -66,29 +64,28 @@ pub fn run(target: Target) -> anyhow::Result<()> {
         &TemplateCache::new(),
     )?;
     let source = format!("{} ({} mode)", args.study.display(), mode.as_str());
-    let deck = repose_deck(&inputs, seed, &source)
+    let deck = deck(experiment, &inputs, seed, &source)
         .map_err(anyhow::Error::msg)
         .with_context(|| format!("cannot export {}", args.study.display()))?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
-    for (name, text) in [
-        ("in.repose", &deck.input),
-        ("particles.data", &deck.data),
-        ("cylinder.stl", &deck.cylinder_stl),
-    ] {
-        crate::io::write_atomic(&args.out.join(name), |w| {
-            w.write_all(text.as_bytes())?;
+    for file in &deck.files {
+        crate::io::write_atomic(&args.out.join(file.name), |w| {
+            w.write_all(file.text.as_bytes())?;
             Ok(())
         })?;
     }
     for w in &deck.warnings {
         eprintln!("warning: {w}");
     }
+    let names: Vec<&str> = deck.files.iter().map(|f| f.name).collect();
     println!(
-        "wrote {} (in.repose, particles.data, cylinder.stl; dt {:e} s); run: cd {} && liggghts -in in.repose",
+        "wrote {} ({}; dt {:e} s); run: cd {} && liggghts -in {}",
         args.out.display(),
+        names.join(", "),
         deck.dt_s,
-        args.out.display()
+        args.out.display(),
+        deck.input_name()
     );
     Ok(())
 }

@@ -1,8 +1,8 @@
-//! Exports of a study for other engines: today a LIGGGHTS 3.8 input deck of the repose rig
-//! ([`liggghts`]), written by `arachis export liggghts`.
+//! Exports of a study for other engines: today LIGGGHTS 3.8 input decks of the repose and
+//! incline rigs ([`liggghts`]), written by `arachis export liggghts`.
 //!
 //! ```
-//! use arachis::export::liggghts::{cylinder_stl, CYLINDER_SEGMENTS};
+//! use arachis::export::liggghts::repose::{cylinder_stl, CYLINDER_SEGMENTS};
 //! // 50 mm radius, 120 mm long: faces 3.3 mm wide, in 2 rows of at most 20 widths.
 //! let stl = cylinder_stl(50.0, 120.0);
 //! assert!(stl.starts_with("solid cylinder"));
