@@ -352,6 +352,94 @@ fn overflow_is_reported_not_wrapped() {
     assert!(msg(e).contains("overflow"));
 }
 
+/// Two spheres of `radius_m` whose centres lie `gap_m` apart along x, the second moving at
+/// `vy_m_s` along y, under `pair`, after one step: the step's result.
+fn one_contact_step(
+    material: MaterialSpec,
+    pair: PairSpec,
+    radius_m: f64,
+    gap_m: f64,
+    vy_m_s: f64,
+) -> Result<(), StepError> {
+    let mut o = world_parts();
+    let mut w = World::new(o.storage()).unwrap();
+    let m = w.add_material(material).unwrap();
+    w.set_pair(m, m, pair).unwrap();
+    w.add_sphere(SphereSpec::at_rest(m, radius_m, [0.0; 3]))
+        .unwrap();
+    let mut b = SphereSpec::at_rest(m, radius_m, [gap_m, 0.0, 0.0]);
+    b.velocity_m_s = [0.0, vy_m_s, 0.0];
+    w.add_sphere(b).unwrap();
+    w.set_timestep_s(1e-7).unwrap();
+    w.step()
+}
+
+/// A contact force beyond the Q32.32 range must fail the step, not be swallowed by a branch:
+/// the no-attraction clip once turned an overflowed normal force (the poison value, the most
+/// negative integer) into 0, and the Coulomb test turned an overflowed μs·Fn into "no
+/// tangential force", so two spheres passed through each other without a word.
+#[test]
+fn an_overflowed_contact_force_is_reported_not_clipped_away() {
+    // Stiff spheres of R 100 mm overlapping by 100 mm: (4/3)E*·a·α = 7.3e5 MPa · 70.7 mm ·
+    // 100 mm = 5.2e9 N, beyond 2^31 N (and (4/3)E* beyond the fused law's envelope, so the
+    // terms evaluate it).
+    let stiff = MaterialSpec {
+        youngs_modulus_pa: 1e12,
+        poisson: 0.3,
+        density_kg_m3: 7800.0,
+    };
+    let e =
+        one_contact_step(stiff, PairSpec::hertz_mindlin(0.5, 0.5, 0.1), 0.1, 0.1, 0.0).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            StepError::Overflow {
+                stage: arachis_core::error::Stage::SphereContact,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    // Pods overlapping by 0.5 mm (Fn ≈ 3.3 N) sliding at 1 m/s with μs = 1e9: μs·Fn = 3.3e9 N
+    // is beyond the range (μs > 4 is outside the fused law's envelope).
+    let e = one_contact_step(
+        POD,
+        PairSpec::hertz_mindlin(0.5, 1e9, 0.1),
+        0.004,
+        0.0075,
+        1.0,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            StepError::Overflow {
+                stage: arachis_core::error::Stage::SphereContact,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    // Contacts of the same laws in range step without error (stiff spheres of R 4 mm
+    // overlapping by 1 µm: 33 N; the pods with μs = 1e3: μs·Fn = 3.3e3 N).
+    one_contact_step(
+        stiff,
+        PairSpec::hertz_mindlin(0.5, 0.5, 0.1),
+        0.004,
+        0.007999,
+        0.0,
+    )
+    .unwrap();
+    one_contact_step(
+        POD,
+        PairSpec::hertz_mindlin(0.5, 1e3, 0.1),
+        0.004,
+        0.0075,
+        1.0,
+    )
+    .unwrap();
+}
+
 fn any_f64() -> impl Strategy<Value = f64> {
     prop_oneof![
         4 => -1.0f64..1.0,

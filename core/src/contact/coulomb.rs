@@ -51,7 +51,11 @@ impl<S: Scalar> ContactTerm<S> for CoulombLimit<S> {
             return spring_limit(limit, state, out);
         }
         let f2 = out.tangential.norm2();
-        if f2 <= limit * limit {
+        let limit2 = limit * limit;
+        if poisoned(out, [limit, f2, limit2]) {
+            return;
+        }
+        if f2 <= limit2 {
             return;
         }
         if limit <= S::ZERO {
@@ -62,6 +66,9 @@ impl<S: Scalar> ContactTerm<S> for CoulombLimit<S> {
         let f = f2.sqrt();
         out.tangential = out.tangential.scale(limit / f);
         let spring = out.tangential_stiffness * state.delta.norm();
+        if poisoned(out, [spring]) {
+            return;
+        }
         if spring > limit {
             state.delta = state.delta.scale(limit / spring);
         }
@@ -73,12 +80,27 @@ impl<S: Scalar> ContactTerm<S> for CoulombLimit<S> {
 #[inline(always)]
 fn spring_limit<S: Scalar>(limit: S, state: &mut ContactState<S>, out: &mut ContactForce<S>) {
     let spring = out.tangential_stiffness * state.delta.norm();
-    if spring <= limit {
+    if poisoned(out, [limit, spring]) || spring <= limit {
         return;
     }
     let ratio = limit / spring;
     state.delta = state.delta.scale(ratio);
     out.tangential = state.delta.scale(-out.tangential_stiffness);
+}
+
+/// `true`, with the tangential force set to the offending value, when a quantity the limit
+/// compares is not valid (an overflowed product): in fixed point the poison is the most
+/// negative integer, which a comparison would take for a small number, turning an overflow
+/// into a silently wrong force; carried in the force, it fails the step instead.
+#[inline(always)]
+fn poisoned<S: Scalar, const N: usize>(out: &mut ContactForce<S>, xs: [S; N]) -> bool {
+    match xs.into_iter().find(|x| !x.is_valid()) {
+        Some(p) => {
+            out.tangential = crate::num::Vec3::new(p, p, p);
+            true
+        }
+        None => false,
+    }
 }
 
 #[cfg(test)]

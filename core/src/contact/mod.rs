@@ -153,10 +153,12 @@ pub trait ContactTerm<S: Scalar> {
     );
 }
 
-/// Clip the total normal force at zero: the contact law is never attractive.
+/// Clip the total normal force at zero: the contact law is never attractive. An overflowed
+/// force stays as it is (in fixed point its poison is the most negative integer, which the
+/// clip would otherwise turn into a silent 0), so the step reports the overflow.
 #[inline(always)]
 pub fn clip_normal<S: Scalar>(out: &mut ContactForce<S>) {
-    if out.normal < S::ZERO {
+    if out.normal < S::ZERO && out.normal.is_valid() {
         out.normal = S::ZERO;
     }
 }
