@@ -299,3 +299,13 @@ fn a_missing_study_file_is_an_error_naming_it() {
     assert!(e.file.ends_with("no-such-study.toml"));
     assert!(e.reason.contains("cannot read the study file"), "{e}");
 }
+
+/// Issue 23: a study name that holds a path (`x/../../../escaped`) is refused where it is
+/// written, before `calibrate` could make `calibration-NAME-MODE` three folders up.
+#[test]
+fn a_name_with_a_path_is_refused() {
+    let name = "name_escapes.toml";
+    let errors = rejected(name);
+    let e = at(&errors, "study.name");
+    check(e, name, line_of(name, "escaped", 1), "may not hold '/'");
+}

@@ -118,10 +118,15 @@ struct Report<'a> {
     steps: u64,
     dt_s: f64,
     pass_time_s: f64,
-    wall_seconds: f64,
+    /// Wall time of the run, s: printed, never written into `--output`, whose bytes must be
+    /// the same for every run of the same command.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    wall_seconds: Option<f64>,
     scalar: &'static str,
-    /// Threads each pass could step on (`--threads` shared among the passes run at once).
-    threads: usize,
+    /// Threads each pass could step on (`--threads` shared among the passes run at once);
+    /// printed only, like the wall time (the results do not depend on it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    threads: Option<usize>,
 }
 
 /// Runs `arachis harvest`.
@@ -197,11 +202,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     } else {
         Fx::NAME
     };
-    let report = report(&config, &model, &outcome, wall_seconds, scalar);
+    let mut report = report(&config, &model, &outcome, wall_seconds, scalar);
     let json = serde_json::to_string(&report)?;
     if let Some(path) = &args.output {
+        report.wall_seconds = None;
+        report.threads = None;
+        let file = serde_json::to_string(&report)?;
         write_atomic(path, |w| {
-            w.write_all(json.as_bytes())?;
+            w.write_all(file.as_bytes())?;
             w.write_all(b"\n")?;
             Ok(())
         })
@@ -267,8 +275,8 @@ fn report<'a>(
         steps: outcome.steps,
         dt_s: outcome.dt_s,
         pass_time_s: outcome.pass_time_s,
-        wall_seconds,
+        wall_seconds: Some(wall_seconds),
         scalar,
-        threads: crate::stepping::default_threads(),
+        threads: Some(crate::stepping::default_threads()),
     }
 }

@@ -5,6 +5,13 @@
 //! partial file behind: the destination either holds the complete new content or is
 //! untouched.
 //!
+//! The temporary file is named `.NAME.arachis.HOST.PID.XXXXXX` after its destination NAME, the
+//! machine and the writing process. A process killed mid-write (`kill -9`) cannot remove it,
+//! so the next write of the same destination removes every such file left by a process of
+//! this machine that is no longer running; files of live processes, and of other machines
+//! sharing the folder, are left alone. Outputs are created with mode 0666 less the umask
+//! (0644 under the usual umask 022), as a plain `File::create` would.
+//!
 //! ```
 //! let dir = tempfile::tempdir().unwrap();
 //! let path = dir.path().join("design.csv");
@@ -27,7 +34,19 @@ where
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
-    let tmp = tempfile::NamedTempFile::new_in(dir)
+    let stem = temporary_stem(path);
+    remove_stale_temporaries(dir, &stem);
+    let prefix = format!("{stem}{}.{}.", host_name(), std::process::id());
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        // The umask applies to the mode at creation, as for File::create.
+        builder.permissions(std::fs::Permissions::from_mode(OUTPUT_MODE));
+    }
+    let tmp = builder
+        .tempfile_in(dir)
         .with_context(|| format!("cannot create a temporary file in {}", dir.display()))?;
     {
         let mut out = BufWriter::new(tmp.as_file());
@@ -38,6 +57,61 @@ where
     tmp.persist(path)
         .with_context(|| format!("cannot write {}", path.display()))?;
     Ok(())
+}
+
+/// Mode of a new output file before the umask: read and write for everyone, as
+/// `File::create` asks.
+#[cfg(unix)]
+const OUTPUT_MODE: u32 = 0o666;
+
+/// The start of every temporary file name of destination `path`: `.NAME.arachis.`.
+fn temporary_stem(path: &Path) -> String {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    format!(".{name}.arachis.")
+}
+
+/// This machine's name (Linux), or `localhost`; dots are dropped so the name parses back.
+fn host_name() -> String {
+    std::fs::read_to_string("/proc/sys/kernel/hostname")
+        .map(|h| h.trim().replace('.', "_"))
+        .ok()
+        .filter(|h| !h.is_empty())
+        .unwrap_or_else(|| "localhost".into())
+}
+
+/// `true` when process `pid` of this machine is running. Without `/proc` (not Linux) every
+/// process counts as running, so nothing is removed.
+fn process_running(pid: u32) -> bool {
+    let proc = Path::new("/proc");
+    !proc.is_dir() || proc.join(pid.to_string()).exists()
+}
+
+/// Removes the temporary files of the destination named by `stem` in `dir` that a process
+/// of this machine left behind when it died. Errors are ignored: a file that cannot be
+/// listed or removed costs disk space, not correctness.
+fn remove_stale_temporaries(dir: &Path, stem: &str) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    let host = host_name();
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some(rest) = name.to_str().and_then(|n| n.strip_prefix(stem)) else {
+            continue;
+        };
+        // HOST.PID.XXXXXX, the random part without dots.
+        let mut parts = rest.rsplitn(3, '.');
+        let (_random, pid, owner) = (parts.next(), parts.next(), parts.next());
+        let dead = pid
+            .and_then(|p| p.parse::<u32>().ok())
+            .is_some_and(|p| !process_running(p));
+        if owner == Some(host.as_str()) && dead {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
 }
 
 /// Writes `content` to `path` atomically (see [`write_atomic`]).
@@ -72,5 +146,49 @@ mod tests {
         write_string_atomic(&path, "old").unwrap();
         let _ = write_atomic(&path, |_| anyhow::bail!("simulated failure"));
         assert_eq!(std::fs::read_to_string(&path).unwrap(), "old");
+    }
+
+    /// A temporary file left by a killed writer of this machine is removed by the next write of
+    /// the same destination; one of a running process, one of another machine and one of
+    /// another destination are kept.
+    #[test]
+    fn the_next_write_removes_a_killed_writers_temporary_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("design.csv");
+        let mut child = std::process::Command::new("true").spawn().unwrap();
+        let dead = child.id();
+        child.wait().unwrap();
+        let host = host_name();
+        let stem = temporary_stem(&path);
+        let left = dir.path().join(format!("{stem}{host}.{dead}.Ab12Cd"));
+        let live = dir
+            .path()
+            .join(format!("{stem}{host}.{}.Ef34Gh", std::process::id()));
+        let elsewhere = dir.path().join(format!("{stem}other_host.{dead}.Ij56Kl"));
+        let other = dir
+            .path()
+            .join(format!(".other.csv.arachis.{host}.{dead}.Mn78Op"));
+        for f in [&left, &live, &elsewhere, &other] {
+            std::fs::write(f, "partial").unwrap();
+        }
+        write_string_atomic(&path, "A\n").unwrap();
+        assert!(!left.exists(), "the killed writer's file was kept");
+        assert!(live.exists() && elsewhere.exists() && other.exists());
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "A\n");
+    }
+
+    /// Outputs follow the umask like File::create, instead of the 0600 of a temporary file.
+    #[cfg(unix)]
+    #[test]
+    fn outputs_follow_the_umask() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let reference = dir.path().join("reference");
+        std::fs::File::create(&reference).unwrap();
+        let path = dir.path().join("out.json");
+        write_string_atomic(&path, "{}").unwrap();
+        let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode(&path), mode(&reference));
+        assert_ne!(mode(&path), 0o600, "umask 077 would make this test vacuous");
     }
 }

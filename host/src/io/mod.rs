@@ -1,7 +1,9 @@
 //! Input and output shared by every host module: CSV tables whose errors name the file,
-//! line and column, and atomic file writes that never leave a half-written output behind.
+//! line and column, atomic file writes that never leave a half-written output behind, and
+//! names from input that become file names.
 
 pub mod atomic;
+pub mod file_name;
 pub mod table;
 
 pub use atomic::{write_atomic, write_string_atomic};

@@ -90,6 +90,11 @@ pub(crate) fn validate(src: &Source<'_>, d: &DiagnosisSection) -> Vec<StudyError
     let mut errors = Vec::new();
     let at = KeyPath::root().key("diagnosis");
     let mut err = |key: KeyPath, reason: String| errors.push(src.error(&key, reason));
+    if !d.name.is_empty() {
+        if let Err(reason) = crate::io::file_name::check_name_component(&d.name) {
+            err(at.key("name"), reason);
+        }
+    }
     if let Err(reason) = d.calibration.validate() {
         err(at.key("calibration"), reason);
     }

@@ -25,6 +25,7 @@ mod measurements;
 pub mod plan;
 pub mod ranges;
 
+use crate::io::file_name::check_name_component;
 use crate::limits::Limits;
 use crate::nearest_name::nearest_name;
 use crate::plant::topology::BondSet;
@@ -119,6 +120,9 @@ impl Validator<'_, '_> {
         let at = KeyPath::root().key("study");
         if header.name.trim().is_empty() {
             self.fail(&at.key("name"), "the study needs a name");
+        } else if let Err(reason) = check_name_component(&header.name) {
+            // The name names the output folder (calibration-NAME-MODE).
+            self.fail(&at.key("name"), reason);
         }
         match &header.kind {
             Some(kind) if kind != KIND_PULL_OFF => self.fail(

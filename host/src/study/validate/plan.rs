@@ -76,6 +76,10 @@ impl Validator<'_, '_> {
         }
         for (name, mode) in &plan.modes {
             let k = at.key("modes").key(name);
+            if let Err(reason) = crate::io::file_name::check_name_component(name) {
+                // The mode names the output folder (calibration-NAME-MODE).
+                self.fail(&k, reason);
+            }
             if mode.pods == 0 {
                 self.fail(&k.key("pods"), "pods must be ≥ 1");
             }
