@@ -7,6 +7,7 @@
 pub mod arena;
 pub mod calibration;
 pub mod cli;
+pub mod count_limits;
 pub mod diagnose;
 pub mod doe;
 pub mod export;

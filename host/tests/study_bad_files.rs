@@ -309,3 +309,22 @@ fn a_name_with_a_path_is_refused() {
     let e = at(&errors, "study.name");
     check(e, name, line_of(name, "escaped", 1), "may not hold '/'");
 }
+
+/// Issue 23: counts beyond their limits are refused by the loader (so by `study check`), at
+/// their keys, before `calibrate` could try to allocate them.
+#[test]
+fn counts_beyond_their_limits_are_refused_at_their_keys() {
+    let name = "counts_too_large.toml";
+    let errors = rejected(name);
+    for (key, text) in [
+        ("plan.steepest_ascent.points", "points = 1000000000"),
+        (
+            "plan.box_behnken.centre_points",
+            "centre_points = 100000000",
+        ),
+        ("plan.modes.quick.pods", "pods = 4000000000"),
+    ] {
+        let e = at(&errors, key);
+        check(e, name, line_of(name, text, 1), "at most");
+    }
+}

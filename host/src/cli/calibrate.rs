@@ -50,8 +50,8 @@ pub struct Args {
     /// Any mode of `[plan.modes]` (default: the plan's `mode`).
     #[arg(long)]
     pub mode: Option<String>,
-    /// Simulations run at once (default: every core).
-    #[arg(long, short, value_parser = clap::value_parser!(u32).range(1..))]
+    /// Simulations run at once (default: every core; at most `count_limits::MAX_JOBS`).
+    #[arg(long, short, value_parser = crate::count_limits::count::<u32>(1, crate::count_limits::MAX_JOBS))]
     pub jobs: Option<u32>,
     /// Output folder (default: `calibration-STUDYNAME-MODE`, or `calibration-STUDYNAME`
     /// for a study without modes).

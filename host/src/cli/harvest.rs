@@ -12,6 +12,7 @@
 //!                 [--output FILE]
 //! ```
 
+use crate::count_limits::{count, MAX_PLANTS, MAX_REPLICATES};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
@@ -40,11 +41,14 @@ pub struct Args {
     /// Plant topology (TOML, see `arachis::plant`); default: the shipped small plant.
     #[arg(long, value_name = "FILE")]
     pub topology: Option<PathBuf>,
-    /// Plants per replicate.
-    #[arg(long, default_value_t = HarvestConfig::default().plants)]
+    /// Plants per replicate (at most `count_limits::MAX_PLANTS`).
+    #[arg(long, default_value_t = HarvestConfig::default().plants,
+        value_parser = count::<u32>(1, MAX_PLANTS))]
     pub plants: u32,
-    /// Replicates (different plant layouts; seed 001 uses four).
-    #[arg(long, default_value_t = HarvestConfig::default().replicates)]
+    /// Replicates (different plant layouts; seed 001 uses four; at most
+    /// `count_limits::MAX_REPLICATES`).
+    #[arg(long, default_value_t = HarvestConfig::default().replicates,
+        value_parser = count::<u32>(1, MAX_REPLICATES))]
     pub replicates: u32,
     /// Seed of the first replicate (replicate r uses seed + r).
     #[arg(long, default_value_t = HarvestConfig::default().seed)]

@@ -43,8 +43,8 @@ pub struct Args {
     /// surface instead of the study's (x7, x8, as seed 001 did).
     #[arg(long, value_delimiter = ',')]
     pub carry: Option<Vec<String>>,
-    /// Worker threads (default: every core).
-    #[arg(long)]
+    /// Worker threads (default: every core; at most `count_limits::MAX_JOBS`).
+    #[arg(long, value_parser = crate::count_limits::count::<usize>(1, crate::count_limits::MAX_JOBS))]
     pub jobs: Option<usize>,
     /// No progress bars.
     #[arg(long)]

@@ -146,6 +146,13 @@ fn scenario(args: &Args) -> anyhow::Result<PullOff> {
         "--stalk-spheres must be at least 2 (one clamped, one free), got {}",
         args.stalk_spheres
     );
+    ensure!(
+        args.stalk_spheres <= crate::study::pull_off::MAX_STALK_SPHERES,
+        "--stalk-spheres is {}; at most {} are accepted (the pull-off rig's limit, \
+         study::pull_off::MAX_STALK_SPHERES)",
+        args.stalk_spheres,
+        crate::study::pull_off::MAX_STALK_SPHERES
+    );
     ensure!(args.max_steps >= 1, "--max-steps must be at least 1");
     if args.vtk.is_some() {
         ensure!(args.frame_every >= 1, "--frame-every must be at least 1");

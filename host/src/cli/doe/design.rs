@@ -10,6 +10,7 @@
 //! (see [`crate::doe::design_csv`]). The file is written atomically: on any error no file is
 //! left behind.
 
+use crate::count_limits::{count, MAX_CENTRE_POINTS, MAX_DESIGN_POINTS};
 use std::path::PathBuf;
 
 use anyhow::{bail, Context};
@@ -62,8 +63,9 @@ pub struct Args {
         allow_hyphen_values = true
     )]
     pub factors: Vec<String>,
-    /// Number of centre points (default 0 for pb/factorial designs, 5 for bbd/ccd).
-    #[arg(long)]
+    /// Number of centre points (default 0 for pb/factorial designs, 5 for bbd/ccd; at most
+    /// `count_limits::MAX_CENTRE_POINTS`).
+    #[arg(long, value_parser = count::<usize>(0, MAX_CENTRE_POINTS))]
     pub center: Option<usize>,
     /// Axial distance of a ccd: rotatable, face, spherical, or a number such as 1.414.
     #[arg(long, allow_hyphen_values = true)]
@@ -94,8 +96,9 @@ pub struct PathArgs {
     /// Steepest ascent: coded step of the factor with the largest coefficient.
     #[arg(long)]
     pub step: Option<f64>,
-    /// Steepest ascent: number of points, origin included.
-    #[arg(long)]
+    /// Steepest ascent: number of points, origin included (at most
+    /// `count_limits::MAX_DESIGN_POINTS`).
+    #[arg(long, value_parser = count::<usize>(1, MAX_DESIGN_POINTS))]
     pub points: Option<usize>,
 }
 

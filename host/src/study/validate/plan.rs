@@ -42,6 +42,7 @@ pub fn check_named(named: &[String], known: &[String]) -> Result<(), String> {
 impl Validator<'_, '_> {
     pub(super) fn plan(&mut self, file: &StudyFile, plan: &Plan) {
         let at = KeyPath::root().key("plan");
+        self.counts(plan, &at);
         self.modes(plan, &at);
         self.screening(file, plan, &at);
         self.path(plan, &at);
@@ -61,6 +62,51 @@ impl Validator<'_, '_> {
         self.references(file, plan, &at);
         if let Some(sim) = &plan.simulation {
             self.simulation(sim, &at.key("simulation"));
+        }
+    }
+
+    /// Every count of the plan against its limit ([`crate::count_limits`]), so a study that
+    /// `study check` accepts cannot exhaust memory in `calibrate`.
+    fn counts(&mut self, plan: &Plan, at: &KeyPath) {
+        use crate::count_limits::*;
+        let sa = at.key("steepest_ascent");
+        let mut counts = vec![
+            (
+                at.key("screening").key("centre_points"),
+                u64::from(plan.screening.centre_points),
+                MAX_CENTRE_POINTS,
+            ),
+            (
+                sa.key("points"),
+                u64::from(plan.steepest_ascent.points),
+                MAX_DESIGN_POINTS,
+            ),
+        ];
+        if let Some(max) = plan.steepest_ascent.max_points {
+            counts.push((sa.key("max_points"), u64::from(max), MAX_DESIGN_POINTS));
+        }
+        if let Some(b) = &plan.box_behnken {
+            let k = at.key("box_behnken").key("centre_points");
+            counts.push((k, u64::from(b.centre_points), MAX_CENTRE_POINTS));
+        }
+        if let Some(c) = &plan.central_composite {
+            let k = at.key("central_composite").key("centre_points");
+            counts.push((k, u64::from(c.centre_points), MAX_CENTRE_POINTS));
+        }
+        for (name, mode) in &plan.modes {
+            let k = at.key("modes").key(name);
+            counts.push((k.key("pods"), u64::from(mode.pods), MAX_PODS));
+            counts.push((
+                k.key("spheres_per_pod"),
+                u64::from(mode.spheres_per_pod),
+                MAX_SPHERES_PER_POD,
+            ));
+        }
+        for (key, value, max) in counts {
+            // The lower bounds are each count's own rule, checked with its reason below.
+            if let Err(reason) = check_count("the count", value, 0, max) {
+                self.fail(&key, reason);
+            }
         }
     }
 
