@@ -328,3 +328,12 @@ fn counts_beyond_their_limits_are_refused_at_their_keys() {
         check(e, name, line_of(name, text, 1), "at most");
     }
 }
+
+/// Issue 23: a study that is not UTF-8 text is refused with the line of its first bad byte.
+#[test]
+fn a_file_that_is_not_utf8_is_refused_at_its_line() {
+    let errors = rejected("not_utf8.toml").to_string();
+    assert!(errors.contains("not_utf8.toml"), "{errors}");
+    assert!(errors.contains("not UTF-8 text"), "{errors}");
+    assert!(errors.contains("line 3"), "{errors}");
+}

@@ -136,7 +136,7 @@ struct Report<'a> {
 /// Runs `arachis harvest`.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let text = match &args.topology {
-        Some(p) => std::fs::read_to_string(p)
+        Some(p) => crate::io::text::read_text(p)
             .with_context(|| format!("cannot read the topology {}", p.display()))?,
         None => crate::plant::SHIPPED_TOPOLOGY.to_owned(),
     };
@@ -144,7 +144,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let model = generate(&topology).context("cannot generate the plant")?;
     let mut machine = match &args.machine {
         Some(p) => {
-            let text = std::fs::read_to_string(p)
+            let text = crate::io::text::read_text(p)
                 .with_context(|| format!("cannot read the machine file {}", p.display()))?;
             toml::from_str::<Machine>(&text)
                 .with_context(|| format!("bad machine file {}", p.display()))?

@@ -52,7 +52,7 @@ pub fn run(args: Args, json: bool) -> anyhow::Result<()> {
 
 /// Runs `arachis lab repose-pile`, printing to `out`.
 pub fn execute(args: Args, json: bool, out: &mut dyn Write) -> anyhow::Result<()> {
-    let text = std::fs::read_to_string(&args.dump)
+    let text = crate::io::text::read_text(&args.dump)
         .with_context(|| format!("cannot read {}", args.dump.display()))?;
     let pile = parse_dump(&text, &args.dump)?;
     let min_radius = pile

@@ -20,7 +20,7 @@ pub struct Args {
 /// Runs `arachis plant`.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let text = match &args.topology {
-        Some(p) => std::fs::read_to_string(p)
+        Some(p) => crate::io::text::read_text(p)
             .with_context(|| format!("cannot read the topology {}", p.display()))?,
         None => crate::plant::SHIPPED_TOPOLOGY.to_owned(),
     };

@@ -98,7 +98,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         return verdict;
     }
     let written: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(&path)
+        &crate::io::text::read_text(&path)
             .with_context(|| format!("cannot read back {}", path.display()))?,
     )
     .with_context(|| format!("{} is not JSON", path.display()))?;

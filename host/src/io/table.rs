@@ -68,6 +68,19 @@ pub enum InputError {
         /// The header, comma-separated.
         available: String,
     },
+    /// Two header cells name the same column: which one an analysis should read is not
+    /// known, so neither is taken.
+    #[error("{path}: column '{column}' appears twice, as columns {first} and {second}")]
+    DuplicateColumn {
+        /// The file.
+        path: PathBuf,
+        /// The repeated header.
+        column: String,
+        /// 1-based positions of its first and second appearance.
+        first: usize,
+        /// See `first`.
+        second: usize,
+    },
     /// A value is numeric but outside what the analysis accepts.
     #[error("{path}:{line}: column '{column}': {reason}")]
     BadValue {
@@ -102,10 +115,26 @@ pub struct CsvTable {
     pub rows: Vec<Row>,
 }
 
+/// Longest cell text echoed in a message, in characters; a longer one is cut there (a
+/// 20-million-digit cell was once echoed in full, 20 MB on stderr).
+pub const ECHO_CHARS: usize = 40;
+
+/// `text` as a message shows it: whole up to [`ECHO_CHARS`] characters, else its start and
+/// its length.
+pub fn shorten(text: &str) -> String {
+    let n = text.chars().count();
+    if n <= ECHO_CHARS {
+        return text.to_string();
+    }
+    let head: String = text.chars().take(ECHO_CHARS).collect();
+    format!("{head}… ({n} characters)")
+}
+
 impl CsvTable {
-    /// Reads `path`. Rejects unreadable files, files without data rows and ragged rows.
+    /// Reads `path`. Rejects unreadable files, text that is not UTF-8 (at its line), files
+    /// without data rows, repeated column names and ragged rows.
     pub fn read(path: &Path) -> Result<Self, InputError> {
-        let text = std::fs::read_to_string(path).map_err(|e| InputError::Unreadable {
+        let text = super::text::read_text(path).map_err(|e| InputError::Unreadable {
             path: path.to_path_buf(),
             reason: e.to_string(),
         })?;
@@ -129,6 +158,16 @@ impl CsvTable {
             .iter()
             .map(str::to_owned)
             .collect();
+        for (second, column) in headers.iter().enumerate() {
+            if let Some(first) = headers[..second].iter().position(|h| h == column) {
+                return Err(InputError::DuplicateColumn {
+                    path: path.to_path_buf(),
+                    column: shorten(column),
+                    first: first + 1,
+                    second: second + 1,
+                });
+            }
+        }
         let mut rows = Vec::new();
         for record in reader.records() {
             let record = record.map_err(unreadable)?;
@@ -181,8 +220,8 @@ impl CsvTable {
             _ => Err(InputError::NotNumeric {
                 path: self.path.clone(),
                 line: row.line,
-                column: self.headers[col].clone(),
-                value: text.clone(),
+                column: shorten(&self.headers[col]),
+                value: shorten(text),
             }),
         }
     }
@@ -283,5 +322,31 @@ mod tests {
     #[test]
     fn header_only_is_empty() {
         assert!(matches!(parse("a,b\n"), Err(InputError::Empty { .. })));
+        // A repeated column is refused, naming both places.
+        let e = parse("mass_g,volume_ml,mass_g\n1,2,3\n").unwrap_err();
+        assert!(matches!(
+            e,
+            InputError::DuplicateColumn {
+                first: 1,
+                second: 3,
+                ..
+            }
+        ));
+        assert!(e.to_string().contains("'mass_g' appears twice"));
+        // A huge cell is echoed as its start and length.
+        let t = CsvTable::parse(
+            Path::new("x.csv"),
+            &format!("a\n{}x\n", "9".repeat(100_000)),
+        )
+        .unwrap();
+        let msg = t.f64_column("a").unwrap_err().to_string();
+        assert!(msg.len() < 200, "{msg}");
+        assert!(msg.contains("(100001 characters)"), "{msg}");
+        // Bytes that are not UTF-8 are refused at their line.
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("latin1.csv");
+        std::fs::write(&path, b"name,mass_g\npod,1.5\nnoix \xe9,2\n").unwrap();
+        let e = CsvTable::read(&path).unwrap_err().to_string();
+        assert!(e.contains("latin1.csv") && e.contains("line 3"), "{e}");
     }
 }

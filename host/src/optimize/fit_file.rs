@@ -59,7 +59,7 @@ pub struct FitFile {
 impl FitFile {
     /// Reads and checks `path`.
     pub fn read(path: &Path) -> Result<Self, OptimizeError> {
-        let text = std::fs::read_to_string(path).map_err(|e| OptimizeError::FitFile {
+        let text = crate::io::text::read_text(path).map_err(|e| OptimizeError::FitFile {
             path: path.to_path_buf(),
             place: "file".into(),
             reason: format!("cannot read: {e}"),

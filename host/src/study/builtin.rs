@@ -20,7 +20,7 @@ impl Study {
             if p.file_name() == Some(std::ffi::OsStr::new(crate::plant::SHIPPED_TOPOLOGY_FILE)) {
                 Ok(crate::plant::SHIPPED_TOPOLOGY.to_owned())
             } else {
-                std::fs::read_to_string(p)
+                crate::io::text::read_text(p)
             }
         };
         Self::from_toml_reading(SHIPPED_STUDY, Path::new(SHIPPED_STUDY_PATH), &read)

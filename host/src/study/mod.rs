@@ -76,7 +76,7 @@ pub struct Study {
 
 /// The text of the study file at `path`, or the error naming it.
 pub(crate) fn read_study_text(path: &Path) -> Result<String, StudyErrors> {
-    std::fs::read_to_string(path).map_err(|e| {
+    crate::io::text::read_text(path).map_err(|e| {
         StudyErrors(vec![StudyError {
             file: path.to_owned(),
             key: KeyPath::root(),
@@ -95,7 +95,7 @@ impl Study {
     /// Parses and validates `text` as if read from `path` (which names the file in messages
     /// and anchors relative paths).
     pub fn from_toml(text: &str, path: &Path) -> Result<Self, StudyErrors> {
-        Self::from_toml_reading(text, path, &|p| std::fs::read_to_string(p))
+        Self::from_toml_reading(text, path, &|p| crate::io::text::read_text(p))
     }
 
     /// Like [`Study::from_toml`], reading the files the study names (a plant topology)
