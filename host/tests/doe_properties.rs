@@ -236,6 +236,12 @@ fn factor_levels_are_checked() {
     );
     assert!(Factor::new("", "-", 0.0, 1.0).is_err());
     assert!(Factor::new("x", "-", f64::NAN, 1.0).is_err());
+    // Issue 23: ±1e308 levels once gave axial points of ±inf and NaN in the design file.
+    assert!(Factor::parse("x:-1e308:1e308")
+        .unwrap_err()
+        .to_string()
+        .contains("would leave double precision"));
+    assert!(Factor::new("x", "-", -1e100, 1e100).is_ok());
     assert!(Factor::parse("x:0:1:mm").is_ok());
     assert!(Factor::parse("x:0").is_err());
     assert!(Factor::parse("x:a:1")

@@ -27,9 +27,15 @@ pub struct Factor {
     pub high: f64,
 }
 
+/// Largest |level| of a factor, in its unit: no quantity of a DEM study comes near it, and it
+/// keeps every derived value finite: axial points (α ≤ a few), and squared terms, 1e200
+/// (±1e308 levels once gave axial points of ±inf and NaN).
+pub const MAX_LEVEL_MAGNITUDE: f64 = 1e100;
+
 impl Factor {
     /// A factor with coded −1 at `low` and +1 at `high` (both in `unit`).
-    /// Rejects an empty name, non-finite levels and `low >= high`.
+    /// Rejects an empty name, non-finite levels, levels beyond ±[`MAX_LEVEL_MAGNITUDE`] and
+    /// `low >= high`.
     pub fn new(name: &str, unit: &str, low: f64, high: f64) -> Result<Self, DesignError> {
         let bad = |reason: String| DesignError::BadFactor {
             name: name.to_owned(),
@@ -41,6 +47,12 @@ impl Factor {
         if !low.is_finite() || !high.is_finite() {
             return Err(bad(format!(
                 "levels {low} and {high} must be finite numbers"
+            )));
+        }
+        if low.abs().max(high.abs()) > MAX_LEVEL_MAGNITUDE {
+            return Err(bad(format!(
+                "levels {low:e} and {high:e} are beyond ±{MAX_LEVEL_MAGNITUDE:e}: the axial \
+                 points and squared terms of a design would leave double precision"
             )));
         }
         if low >= high {

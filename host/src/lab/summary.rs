@@ -58,6 +58,13 @@ pub enum SummaryError {
         /// 0-based position of the value.
         index: usize,
     },
+    /// The summary itself is beyond double precision (replicates near ±1.8e308): it would
+    /// be written as inf or NaN, so none is written.
+    #[error("the replicates (up to {largest:e}) are too large for a summary in double precision")]
+    Unrepresentable {
+        /// The largest |replicate|.
+        largest: f64,
+    },
 }
 
 /// Summarises `values` (any unit; the summary is in the same unit).
@@ -70,11 +77,16 @@ pub fn summarize(values: &[f64]) -> Result<Summary, SummaryError> {
         return Err(SummaryError::NotFinite { index });
     }
     let count = n as f64;
-    let mean = values.iter().sum::<f64>() / count;
-    let ss: f64 = values.iter().map(|v| (v - mean).powi(2)).sum();
-    let sd = (ss / (count - 1.0)).sqrt();
+    // Unscaled first (scale 1 divides and multiplies exactly, so ordinary replicates keep
+    // their bits); replicates near the top of the double range overflow the sum or the
+    // squares (1e300 once gave an SD of inf), so they are summed scaled by the largest.
+    let largest = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let (mut mean, mut sd) = moments(values, 1.0);
+    if !(mean.is_finite() && sd.is_finite()) && largest > 0.0 {
+        (mean, sd) = moments(values, largest);
+    }
     let half_width = t_quantile(n - 1) * sd / count.sqrt();
-    Ok(Summary {
+    let summary = Summary {
         n: n as u64,
         mean,
         sd,
@@ -82,7 +94,31 @@ pub fn summarize(values: &[f64]) -> Result<Summary, SummaryError> {
         max: values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
         ci95_low: mean - half_width,
         ci95_high: mean + half_width,
-    })
+    };
+    let finite = [
+        summary.mean,
+        summary.sd,
+        summary.ci95_low,
+        summary.ci95_high,
+    ]
+    .iter()
+    .all(|x| x.is_finite());
+    if finite {
+        Ok(summary)
+    } else {
+        Err(SummaryError::Unrepresentable { largest })
+    }
+}
+
+/// Mean and sample standard deviation of `values`, summed as `value / scale`.
+fn moments(values: &[f64], scale: f64) -> (f64, f64) {
+    let count = values.len() as f64;
+    let scaled_mean = values.iter().map(|v| v / scale).sum::<f64>() / count;
+    let ss: f64 = values
+        .iter()
+        .map(|v| (v / scale - scaled_mean).powi(2))
+        .sum();
+    (scaled_mean * scale, (ss / (count - 1.0)).sqrt() * scale)
 }
 
 /// Two-sided Student t quantile t(1 − (1 − [`CONFIDENCE`])/2, df), df ≥ 1.
@@ -115,6 +151,19 @@ mod tests {
     fn one_replicate_is_an_error() {
         assert_eq!(summarize(&[3.0]), Err(SummaryError::TooFew { n: 1 }));
         assert_eq!(summarize(&[]), Err(SummaryError::TooFew { n: 0 }));
+    }
+
+    /// Issue 23: replicates near the top of the double range give a finite summary where
+    /// one exists (1e300 once gave an SD of inf), and an error, never inf or NaN, where none
+    /// does.
+    #[test]
+    fn huge_replicates_give_a_finite_summary_or_an_error() {
+        let s = summarize(&[1e300, 2e300, 3e300]).unwrap();
+        assert!((s.mean / 2e300 - 1.0).abs() < 1e-15);
+        assert!((s.sd / 1e300 - 1.0).abs() < 1e-15);
+        assert!(s.ci95_high.is_finite() && s.ci95_low.is_finite());
+        let e = summarize(&[1.7e308, -1.7e308]).unwrap_err();
+        assert!(matches!(e, SummaryError::Unrepresentable { .. }), "{e}");
     }
 
     #[test]

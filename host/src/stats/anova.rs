@@ -119,10 +119,32 @@ pub struct Anova {
     pub coefficients: Vec<Coefficient>,
 }
 
+/// Relative spread below which a response counts as constant: rounding of values typed with
+/// up to twelve significant digits.
+pub const CONSTANT_RESPONSE_SPREAD: f64 = 1e-12;
+
+/// `Err(NoVariation)` when every response equals the first to [`CONSTANT_RESPONSE_SPREAD`]
+/// of its size (a constant response once gave R² −4.9 and "Lack of Fit significant").
+fn check_variation(response: &[f64]) -> Result<(), StatsError> {
+    let Some(&first) = response.first() else {
+        return Ok(());
+    };
+    let (lo, hi) = response
+        .iter()
+        .fold((first, first), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+    let size = lo.abs().max(hi.abs());
+    if hi - lo <= CONSTANT_RESPONSE_SPREAD * size {
+        return Err(StatsError::NoVariation { value: first });
+    }
+    Ok(())
+}
+
 /// Fits `order` to `design` and builds the ANOVA table.
 ///
-/// Errors: an aliased term (named), a saturated model (no residual df), or an exact fit.
+/// Errors: a response without variation, an aliased term (named), a saturated model (no
+/// residual df), or an exact fit.
 pub fn analyze(design: &CodedDesign, order: ModelOrder) -> Result<Anova, StatsError> {
+    check_variation(&design.response)?;
     let terms = model_terms(&design.factor_names, order);
     let n = design.runs.len();
     let p_model = terms.len();
@@ -289,6 +311,26 @@ mod tests {
             analyze(&design, ModelOrder::Linear),
             Err(StatsError::PerfectFit)
         );
+    }
+
+    /// Issue 23: a constant response is refused in words, not analysed into rounding noise
+    /// (R² −4.9, "Lack of Fit significant"); a response that varies by a little more than
+    /// the threshold is analysed.
+    #[test]
+    fn a_constant_response_has_no_variation_to_model() {
+        let design = two_squared(vec![5.0; 5]);
+        assert_eq!(
+            analyze(&design, ModelOrder::Linear),
+            Err(StatsError::NoVariation { value: 5.0 })
+        );
+        assert!(StatsError::NoVariation { value: 5.0 }
+            .to_string()
+            .contains("no variation to model"));
+        let design = two_squared(vec![5.0, 5.0 + 1e-9, 5.0, 5.0, 5.0 - 2e-9]);
+        assert!(!matches!(
+            analyze(&design, ModelOrder::Linear),
+            Err(StatsError::NoVariation { .. })
+        ));
     }
 
     #[test]

@@ -42,6 +42,13 @@ pub enum StatsError {
     /// The inputs disagree in length or are too short.
     #[error("{0}")]
     BadShape(String),
+    /// The response does not vary (every run the same to 1 part in 10¹²): there is nothing
+    /// to model, and any fit would report rounding noise as effects.
+    #[error("no variation to model: the response is {value} in every run")]
+    NoVariation {
+        /// The response's value.
+        value: f64,
+    },
     /// The residual variance is zero, so F statistics are undefined.
     #[error(
         "the model fits every run exactly (residual sum of squares is zero); F-tests are undefined"
