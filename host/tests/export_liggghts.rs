@@ -67,6 +67,38 @@ fn run_ok(args: &[&str]) -> (String, String) {
     (stdout, stderr)
 }
 
+/// The observation details of `arachis simulate --json EXPERIMENT` on `study` (with `--seed
+/// SEED` when given): the rig's own time step and geometry.
+fn rig_details(study: &Path, experiment: &str, seed: Option<&str>) -> Value {
+    let mut args = vec!["simulate", "--study", study.to_str().unwrap(), "--json"];
+    if let Some(seed) = seed {
+        args.extend(["--seed", seed]);
+    }
+    args.push(experiment);
+    let (json, _) = run_ok(&args);
+    let o: Value = serde_json::from_str(&json).unwrap();
+    o["observation"]["details"].clone()
+}
+
+/// The deck's `timestep`, s.
+fn deck_dt(input: &str) -> f64 {
+    let line = input.lines().find(|l| l.starts_with("timestep")).unwrap();
+    line.split_whitespace().nth(1).unwrap().parse().unwrap()
+}
+
+/// The rows of the `Atoms` section of a data file: id, type, diameter, density, x, y, z.
+fn atoms(data: &str) -> Vec<Vec<f64>> {
+    data.split("Atoms\n\n")
+        .nth(1)
+        .unwrap()
+        .split("\n\nVelocities")
+        .next()
+        .unwrap()
+        .lines()
+        .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+        .collect()
+}
+
 #[test]
 fn the_deck_holds_the_rigs_particles_time_step_and_cylinder() {
     let dir = tempfile::tempdir().unwrap();
@@ -87,36 +119,13 @@ fn the_deck_holds_the_rigs_particles_time_step_and_cylinder() {
     let stl = std::fs::read_to_string(out.join("cylinder.stl")).unwrap();
 
     // The time step is the one the rig steps with (reported by simulate).
-    let (json, _) = run_ok(&[
-        "simulate",
-        "--study",
-        study.to_str().unwrap(),
-        "--seed",
-        "3",
-        "--json",
-        "repose",
-    ]);
-    let o: Value = serde_json::from_str(&json).unwrap();
-    let details = &o["observation"]["details"];
-    let dt = details["dt_s"].as_f64().unwrap();
-    let line = input.lines().find(|l| l.starts_with("timestep")).unwrap();
-    let deck_dt: f64 = line.split_whitespace().nth(1).unwrap().parse().unwrap();
-    assert_eq!(deck_dt, dt, "{line}");
+    let details = rig_details(&study, "repose", Some("3"));
+    assert_eq!(deck_dt(&input), details["dt_s"].as_f64().unwrap());
 
     // 400 spheres of diameter 8 mm and the pod density, inside the rig's cylinder.
     assert!(data.contains("400 atoms\n2 atom types"));
     let radius_m = details["cylinder_diameter_mm"].as_f64().unwrap() / 2e3;
-    let atoms = data
-        .split("Atoms\n\n")
-        .nth(1)
-        .unwrap()
-        .split("\n\nVelocities")
-        .next();
-    let atoms: Vec<Vec<f64>> = atoms
-        .unwrap()
-        .lines()
-        .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
-        .collect();
+    let atoms = atoms(&data);
     assert_eq!(atoms.len(), 400);
     for a in &atoms {
         assert_eq!(a[2], 0.008);
@@ -230,37 +239,13 @@ fn the_incline_deck_holds_the_rigs_sphere_time_step_and_tilt_schedule() {
     assert!(!out.join("cylinder.stl").exists());
     let input = std::fs::read_to_string(out.join("in.incline")).unwrap();
     let data = std::fs::read_to_string(out.join("particles.data")).unwrap();
-    let (json, _) = run_ok(&[
-        "simulate",
-        "--study",
-        study.to_str().unwrap(),
-        "--json",
-        "incline_slide",
-    ]);
-    let o: Value = serde_json::from_str(&json).unwrap();
-    let dt = o["observation"]["details"]["dt_s"].as_f64().unwrap();
-    let line = input.lines().find(|l| l.starts_with("timestep")).unwrap();
-    let deck_dt: f64 = line.split_whitespace().nth(1).unwrap().parse().unwrap();
-    assert_eq!(deck_dt, dt, "{line}");
+    let dt = rig_details(&study, "incline_slide", None)["dt_s"]
+        .as_f64()
+        .unwrap();
+    assert_eq!(deck_dt(&input), dt);
     // One sphere of 8 mm, pod density, at R + 0.05 mm, at rest.
-    assert!(data.contains(
-        "1 atoms
-2 atom types"
-    ));
-    let atom: Vec<f64> = data
-        .split(
-            "Atoms
-
-",
-        )
-        .nth(1)
-        .unwrap()
-        .lines()
-        .next()
-        .unwrap()
-        .split_whitespace()
-        .map(|x| x.parse().unwrap())
-        .collect();
+    assert!(data.contains("1 atoms\n2 atom types"));
+    let atom = &atoms(&data)[0];
     assert_eq!(&atom[2..6], &[0.008, 582.36, 0.0, 0.0]);
     assert!((atom[6] - 0.00405).abs() < 1e-15, "{atom:?}");
     // Gravity turns every round(0.002 s / dt) steps; the rig's onset and confirmation.

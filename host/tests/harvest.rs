@@ -252,16 +252,23 @@ fn cli_runs_with_vtk_frames_and_reports_loss_and_t_test() {
     let dir = tempfile::tempdir().unwrap();
     let vtk = dir.path().join("vtk");
     let report = dir.path().join("report.json");
-    let out = arachis(&[
-        "harvest",
-        "--plants",
-        "1",
-        "--replicates",
-        "2",
-        "--drum-length",
-        "0.02",
-        "--forward-speed",
-        "2",
+    // One plant, two replicates, a short drum: a run of about a second.
+    let small = |extra: &[&str]| {
+        let mut args = vec![
+            "harvest",
+            "--plants",
+            "1",
+            "--replicates",
+            "2",
+            "--drum-length",
+            "0.02",
+            "--forward-speed",
+            "2",
+        ];
+        args.extend_from_slice(extra);
+        arachis(&args)
+    };
+    let out = small(&[
         "--vtk",
         vtk.to_str().unwrap(),
         "--frame-every",
@@ -300,19 +307,7 @@ fn cli_runs_with_vtk_frames_and_reports_loss_and_t_test() {
     }
     // Once more, without frames: the report file has the same bytes.
     let again = dir.path().join("again.json");
-    let out = arachis(&[
-        "harvest",
-        "--plants",
-        "1",
-        "--replicates",
-        "2",
-        "--drum-length",
-        "0.02",
-        "--forward-speed",
-        "2",
-        "--output",
-        again.to_str().unwrap(),
-    ]);
+    let out = small(&["--output", again.to_str().unwrap()]);
     assert!(out.status.success());
     assert_eq!(
         std::fs::read(&again).unwrap(),
