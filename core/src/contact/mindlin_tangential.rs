@@ -40,7 +40,7 @@ impl<S: Scalar> ContactTerm<S> for MindlinTangential<S> {
         }
         let n = k.normal;
         let d = state.delta;
-        let d = d - n.scale(d.dot(n)) + k.vt.scale(k.dt);
+        let d = d.in_plane_of(n) + k.vt.scale(k.dt);
         state.delta = d;
         let st = self.eight_g_star * k.contact_radius;
         out.tangential_stiffness = st;

@@ -54,7 +54,7 @@ impl<S: Scalar> ContactTerm<S> for RollingCdtLiggghts<S> {
         let Some((w_hat, _)) = k.w_rel.normalize_with_len() else {
             return;
         };
-        let rolling = w_hat - k.normal.scale(w_hat.dot(k.normal));
+        let rolling = w_hat.in_plane_of(k.normal);
         let elastic = self.four_thirds_e_star * (k.contact_radius * k.overlap);
         out.rolling_torque += rolling.scale(self.mu_r * elastic * k.r_star);
     }

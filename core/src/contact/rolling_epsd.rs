@@ -66,9 +66,9 @@ impl<S: Scalar> ContactTerm<S> for RollingEpsd<S> {
             return;
         }
         let n = k.normal;
-        let wr = k.w_rel - n.scale(k.w_rel.dot(n));
+        let wr = k.w_rel.in_plane_of(n);
         let th = state.roll_angle;
-        let th = th - n.scale(th.dot(n)) + wr.scale(k.dt);
+        let th = th.in_plane_of(n) + wr.scale(k.dt);
         let kr = self.stiffness_coef * k.contact_radius * (k.r_star * k.r_star);
         let limit = self.mu_r * k.r_star * out.normal;
         // |θr| through the exact power-of-two normalisation: θr is ~1e-3 rad, whose square

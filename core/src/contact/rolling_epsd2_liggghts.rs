@@ -65,8 +65,7 @@ impl<S: Scalar> ContactTerm<S> for RollingEpsd2Liggghts<S> {
         if !self.on {
             return;
         }
-        let n = k.normal;
-        let w_t = k.w_rel - n.scale(k.w_rel.dot(n));
+        let w_t = k.w_rel.in_plane_of(k.normal);
         let k_r = self.eight_g_star * k.contact_radius * (k.r_star * k.r_star);
         let mut torque = state.roll_torque + w_t.scale(k.dt * k_r);
         let limit = self.mu_r * out.normal.abs() * k.r_star;

@@ -58,6 +58,12 @@ impl<S: Scalar> Vec3<S> {
     pub fn scale(self, s: S) -> Self {
         Vec3::new(self.x * s, self.y * s, self.z * s)
     }
+    /// The part of `self` in the plane normal to the unit vector `n`: self − n·(self·n)
+    /// (a contact's tangent plane: tangential history, rolling spin).
+    #[inline(always)]
+    pub fn in_plane_of(self, n: Self) -> Self {
+        self - n.scale(self.dot(n))
+    }
     /// Squared length.
     #[inline(always)]
     pub fn norm2(self) -> S {
