@@ -120,4 +120,25 @@ fn bad_input_is_a_clear_error() {
     ]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("must be >= 0"));
+    // Issue 23: --plots naming a file is refused at once, with its path (it once ran the
+    // whole fit, then said "File exists (os error 17)").
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("plots.svg");
+    std::fs::write(&file, "").unwrap();
+    let measured = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../testdata/diagnosis-tutorial/measured.toml"
+    );
+    let out = arachis(&[
+        "fit",
+        measured,
+        "--with",
+        "drag",
+        "--plots",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("plots.svg: is a file"), "{err}");
+    assert!(out.stdout.is_empty(), "the fit ran first");
 }

@@ -158,6 +158,12 @@ fn bad_fit_files_and_goals_exit_2_with_clear_messages() {
             "angle_deg=target:35",
             "target 35 lies outside the limits".into(),
         ),
+        // Issue 23: the goal in words, the number readable, no Rust debug dump.
+        (
+            &eq22,
+            "angle_deg=target:1e300",
+            "goal 'target 1e300 within ".into(),
+        ),
         (
             &eq22,
             "angle_deg=range:30",

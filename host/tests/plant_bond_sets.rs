@@ -156,5 +156,23 @@ fn plant_command_prints_the_counts_beside_seed_001s() {
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("bad plant topology"));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("bad plant topology"), "{err}");
+    // Issue 23: the message names the file.
+    assert!(err.contains("bad.toml"), "{err}");
+
+    // A bond set no bond uses is a misspelt one: refused, naming it and the sets used
+    // (`[bonds.stemm]` was once accepted silently).
+    let extra = dir.path().join("extra.toml");
+    let set = "\n[bonds.stemm]\nkn_n_m3 = 1.0e10\nkt_n_m3 = 4.0e9\nsigma_c_pa = 1e6\ntau_c_pa = 1e6\nradius_m = 1e-3\n";
+    std::fs::write(&extra, format!("{SMALL}{set}")).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_arachis"))
+        .args(["plant", "--topology", extra.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("extra.toml"), "{err}");
+    assert!(err.contains("bond set `stemm` is defined"), "{err}");
+    assert!(err.contains("sets used: leaf, pod_stalk, stalk, stalk_stem, stem, stem_leaf"));
 }

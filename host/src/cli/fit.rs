@@ -47,6 +47,15 @@ pub struct Args {
 /// Runs `arachis fit`.
 pub fn run(args: Args) -> Result<()> {
     use std::fmt::Write;
+    if let Some(dir) = &args.plots {
+        // Refused before the fit runs, naming the path (it once ran the whole fit, then said
+        // "File exists (os error 17)").
+        anyhow::ensure!(
+            !dir.exists() || dir.is_dir(),
+            "--plots {}: is a file; --plots names a folder for the SVG plots",
+            dir.display()
+        );
+    }
     let study = Study::load(&args.study)?;
     let model = Model::new(&study, &experiments(&study))?;
     let eff = model.catalogue.effect(&args.with)?;
@@ -170,7 +179,8 @@ pub fn run(args: Args) -> Result<()> {
     )?;
     print!("{s}");
     if let Some(dir) = &args.plots {
-        std::fs::create_dir_all(dir)?;
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("cannot create the plot folder {}", dir.display()))?;
         for (ei, e) in data.experiments.iter().enumerate() {
             let path = dir.join(format!("fit-{}-{}.svg", ei + 1, e.rig));
             plot_experiment(

@@ -26,7 +26,6 @@ use crate::harvest::{
     run_harvest, HarvestConfig, HarvestOutcome, Machine, Progress, SEED001_FIELD_LOSS_PERCENT,
 };
 use crate::io::write_atomic;
-use crate::plant::{generate, Topology};
 use crate::stats::relative_error_percent;
 use crate::vtk::write_series;
 
@@ -135,13 +134,7 @@ struct Report<'a> {
 
 /// Runs `arachis harvest`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let text = match &args.topology {
-        Some(p) => crate::io::text::read_text(p)
-            .with_context(|| format!("cannot read the topology {}", p.display()))?,
-        None => crate::plant::SHIPPED_TOPOLOGY.to_owned(),
-    };
-    let topology = Topology::from_toml(&text).context("bad plant topology")?;
-    let model = generate(&topology).context("cannot generate the plant")?;
+    let model = super::plant::load_plant(args.topology.as_deref())?;
     let mut machine = match &args.machine {
         Some(p) => {
             let text = crate::io::text::read_text(p)

@@ -3,11 +3,11 @@
 //! bodies, the bond count of every set, the pod–stalk, stalk–stem and stem–leaf counts,
 //! and seed 001's 191 / 201 / 150 beside them. A bad topology is a clear error.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 
-use crate::plant::{generate, Topology};
+use crate::plant::{generate, PlantModel, Topology};
 
 /// Arguments of `arachis plant`.
 #[derive(Debug, clap::Args)]
@@ -19,13 +19,29 @@ pub struct Args {
 
 /// Runs `arachis plant`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let text = match &args.topology {
-        Some(p) => crate::io::text::read_text(p)
-            .with_context(|| format!("cannot read the topology {}", p.display()))?,
-        None => crate::plant::SHIPPED_TOPOLOGY.to_owned(),
-    };
-    let topology = Topology::from_toml(&text).context("bad plant topology")?;
-    let model = generate(&topology).context("cannot generate the plant")?;
+    let model = load_plant(args.topology.as_deref())?;
     println!("{}", serde_json::to_string(&model.summary())?);
     Ok(())
+}
+
+/// The plant generated from the topology at `path` (the shipped small plant when `None`);
+/// every error names the file.
+pub(crate) fn load_plant(path: Option<&Path>) -> anyhow::Result<PlantModel> {
+    let name = path.map_or_else(
+        || {
+            format!(
+                "the shipped topology ({})",
+                crate::plant::SHIPPED_TOPOLOGY_FILE
+            )
+        },
+        |p| p.display().to_string(),
+    );
+    let text = match path {
+        Some(p) => crate::io::text::read_text(p)
+            .with_context(|| format!("cannot read the topology {name}"))?,
+        None => crate::plant::SHIPPED_TOPOLOGY.to_owned(),
+    };
+    let topology =
+        Topology::from_toml(&text).with_context(|| format!("{name}: bad plant topology"))?;
+    generate(&topology).with_context(|| format!("{name}: cannot generate the plant"))
 }

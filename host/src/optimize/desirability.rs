@@ -80,22 +80,40 @@ impl Goal {
         self.checked()
     }
 
+    /// The goal in words, for messages: "target 31.06 within 26.5 … 33.6".
+    pub fn describe(&self) -> String {
+        let kind = match self.kind {
+            GoalKind::Maximise => "maximise".to_string(),
+            GoalKind::Minimise => "minimise".to_string(),
+            GoalKind::Target(t) => format!("target {}", readable(t)),
+            GoalKind::InRange => "in range".to_string(),
+        };
+        format!(
+            "{kind} within {} … {}",
+            readable(self.low),
+            readable(self.high)
+        )
+    }
+
     fn checked(self) -> Result<Self, OptimizeError> {
         let bad = |reason: String| OptimizeError::BadGoal {
-            goal: format!("{self:?}"),
+            goal: self.describe(),
             reason,
         };
         if !(self.low.is_finite() && self.high.is_finite() && self.low < self.high) {
             return Err(bad(format!(
                 "limits {} and {} must be finite with lower < upper",
-                self.low, self.high
+                readable(self.low),
+                readable(self.high)
             )));
         }
         if let GoalKind::Target(t) = self.kind {
             if !(t.is_finite() && self.low <= t && t <= self.high) {
                 return Err(bad(format!(
-                    "target {t} lies outside the limits {} … {}",
-                    self.low, self.high
+                    "target {} lies outside the limits {} … {}",
+                    readable(t),
+                    readable(self.low),
+                    readable(self.high)
                 )));
             }
         }
@@ -182,4 +200,14 @@ pub fn overall_desirability(goals: &[Goal], ys: &[f64]) -> f64 {
         log_sum += g.importance * d.ln();
     }
     (log_sum / total).exp()
+}
+
+/// `x` as a message shows it: plain between 1e-4 and 1e6, else in exponent form (a target
+/// of 1e300 was once printed with 300 zeros).
+fn readable(x: f64) -> String {
+    if x == 0.0 || (1e-4..1e6).contains(&x.abs()) || !x.is_finite() {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
 }

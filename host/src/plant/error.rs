@@ -43,6 +43,14 @@ pub enum PlantError {
     /// A bond set the plant needs is not defined.
     #[error("bond set `{0}` is needed but not defined in [bonds]")]
     MissingBondSet(&'static str),
+    /// A bond set is defined but no bond of the plant uses it (a misspelt set).
+    #[error("bond set `{set}` is defined in [bonds] but no bond of this plant uses it (sets used: {used})")]
+    UnusedBondSet {
+        /// The set.
+        set: String,
+        /// The sets the plant uses, comma-separated.
+        used: String,
+    },
     /// A bond radius ≤ 0.
     #[error("bond set `{set}`: bond radius must be > 0, got {radius_m} m")]
     NonPositiveBondRadius {

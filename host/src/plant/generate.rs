@@ -251,6 +251,14 @@ pub fn generate(t: &Topology) -> Result<PlantModel, PlantError> {
             );
         }
     }
+    // A defined set no bond uses is a typo of one that is used (`[bonds.stemm]` was once
+    // accepted silently).
+    if let Some(unused) = t.bonds.keys().find(|k| !m.sets.contains_key(k.as_str())) {
+        return Err(PlantError::UnusedBondSet {
+            set: unused.clone(),
+            used: m.sets.keys().copied().collect::<Vec<_>>().join(", "),
+        });
+    }
     // Tags in name order, so the host can map break records back to set names.
     for (tag, spec) in m.sets.values_mut().enumerate() {
         spec.tag = tag as u16;
