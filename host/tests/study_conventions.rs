@@ -85,3 +85,33 @@ fn a_misspelt_convention_is_refused_with_the_accepted_names_and_line() {
         "line {line} not in {err}"
     );
 }
+
+/// Issue 23: a value the DEM core cannot hold is reported with the study key it came from
+/// and the value as written (μs = 1e300 once read "pair constant = 15.07 (internal units)",
+/// which named the pair's 8G* and no key).
+#[test]
+fn a_value_the_core_refuses_is_named_by_its_key_and_value() {
+    let text = seed_study_text().replace(
+        "static_friction = 0.589       # seed 000 §3.4: x7 = 0.589",
+        "static_friction = 1e300",
+    );
+    assert!(text.contains("static_friction = 1e300"));
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("study.toml");
+    std::fs::write(&path, text).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_arachis"))
+        .args([
+            "simulate",
+            "--study",
+            path.to_str().unwrap(),
+            "incline_slide",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("the study's pairs.\"pod-steel\": sliding friction μs = 1e300"),
+        "{err}"
+    );
+}

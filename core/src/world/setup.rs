@@ -71,19 +71,36 @@ impl<S: Scalar> World<'_, S> {
         let ma = self.material(a)?;
         let mb = self.material(b)?;
         let p = PairParams::new(&ma, &mb, &spec);
-        let vals: [S; 6] = [
-            p.hertz.four_thirds_e_star,
-            p.normal_damping.coef,
-            p.tangential.eight_g_star,
-            p.tangential_damping.coef,
-            p.coulomb.mu,
-            p.rolling.mu_r,
+        // Each constant with the name and value (internal units) a message should give: the
+        // user's own μs and μr, else the modulus-derived constant (it once named 8G* whatever
+        // failed, so μs = 1e300 read "pair constant = 15.07").
+        let e_star = p.e_star_mpa;
+        let named: [(&'static str, S, f64); 6] = [
+            (
+                "(4/3)E* of the pair, MPa",
+                p.hertz.four_thirds_e_star,
+                4.0 / 3.0 * e_star,
+            ),
+            (
+                "normal damping of the pair's E*, MPa",
+                p.normal_damping.coef,
+                e_star,
+            ),
+            (
+                "8G* of the pair, MPa",
+                p.tangential.eight_g_star,
+                8.0 * p.g_star_mpa,
+            ),
+            (
+                "tangential damping of the pair's G*, MPa",
+                p.tangential_damping.coef,
+                p.g_star_mpa,
+            ),
+            ("sliding friction μs", p.coulomb.mu, spec.friction),
+            ("rolling friction μr", p.rolling.mu_r, spec.rolling_friction),
         ];
-        if vals.iter().any(|v| !v.is_valid()) {
-            return Err(SetupError::NotRepresentable {
-                what: "pair constant",
-                value: p.g_star_mpa * 8.0,
-            });
+        if let Some(&(what, _, value)) = named.iter().find(|(_, v, _)| !v.is_valid()) {
+            return Err(SetupError::NotRepresentable { what, value });
         }
         if p.needs_effect_history() && !self.list.has_effect_history() {
             return Err(SetupError::Capacity {

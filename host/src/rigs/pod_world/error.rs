@@ -68,6 +68,16 @@ pub enum ExperimentError {
         /// The core's error.
         reason: arachis_core::error::SetupError,
     },
+    /// The DEM core refused a value of the study, named by its key.
+    #[error("DEM set-up of the {experiment} experiment: the study's {key}: {reason}")]
+    SetupAt {
+        /// The experiment.
+        experiment: &'static str,
+        /// The study key whose values the core refused, e.g. `pairs."pod-steel"`.
+        key: String,
+        /// The core's error.
+        reason: arachis_core::error::SetupError,
+    },
     /// The DEM core stopped during a step.
     #[error("DEM step of the {experiment} experiment at t = {time_s:.4} s: {reason}")]
     Step {

@@ -273,15 +273,28 @@ pub fn add_materials(
     inputs: &RunInputs,
     experiment: Experiment,
 ) -> Result<RigMaterials, ExperimentError> {
-    let e = |s| setup_error(experiment, s);
+    // Each refusal names the study key its values came from.
+    let at = |key: String| {
+        move |reason| ExperimentError::SetupAt {
+            experiment: experiment.name(),
+            key,
+            reason,
+        }
+    };
+    let pod_name = inputs.spec.particle_material().unwrap_or("pod");
+    let wall_name = inputs.simulation.wall_material.as_str();
     let pod = w
         .add_material_with(inputs.pod, inputs.pod_poisson)
-        .map_err(e)?;
-    let wall = w.add_material(inputs.wall).map_err(e)?;
-    w.set_pair(pod, pod, inputs.pod_pod).map_err(e)?;
-    w.set_pair(pod, wall, inputs.pod_wall).map_err(e)?;
+        .map_err(at(format!("materials.{pod_name}")))?;
+    let wall = w
+        .add_material(inputs.wall)
+        .map_err(at(format!("materials.{wall_name}")))?;
+    w.set_pair(pod, pod, inputs.pod_pod)
+        .map_err(at(format!("pairs.\"{pod_name}-{pod_name}\"")))?;
+    w.set_pair(pod, wall, inputs.pod_wall)
+        .map_err(at(format!("pairs.\"{pod_name}-{wall_name}\"")))?;
     w.set_gravity_m_s2([0.0, 0.0, -inputs.simulation.gravity_m_s2])
-        .map_err(e)?;
+        .map_err(at("plan.simulation.gravity_m_s2".into()))?;
     Ok(RigMaterials { pod, wall })
 }
 
