@@ -64,6 +64,11 @@ fn bad_arguments_are_clear_errors() {
             vec!["pulloff", "--speed", "0"],
             "--speed must be a positive",
         ),
+        // Issue 23: at 1 000 m/s the rig reported no detachment and 0 N.
+        (
+            vec!["pulloff", "--speed", "1000"],
+            "beyond the rig's 10 m/s",
+        ),
         (
             vec!["pulloff", "--bond-radius", "-1e-3"],
             "--bond-radius must be > 0",

@@ -26,7 +26,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use crate::io::write_atomic;
-use crate::rigs::pull_off::PullOffArenas;
+use crate::rigs::pull_off::{PullOffArenas, MAX_PULL_SPEED_M_S};
 use crate::vtk::{write_series, ParticleFrame};
 
 /// Steps between VTK frames by default with `--vtk` (the default run breaks after about
@@ -130,6 +130,12 @@ pub fn check_pull(speed_m_s: f64, angle_deg: f64) -> anyhow::Result<()> {
     ensure!(
         speed_m_s.is_finite() && speed_m_s > 0.0,
         "--speed must be a positive number of m/s, got {speed_m_s}"
+    );
+    ensure!(
+        speed_m_s <= MAX_PULL_SPEED_M_S,
+        "--speed {speed_m_s} m/s is beyond the rig's {} m/s: the pull would no longer be \
+         quasi-static (rigs::pull_off::MAX_PULL_SPEED_M_S says why)",
+        MAX_PULL_SPEED_M_S
     );
     ensure!(
         angle_deg.is_finite() && angle_deg.abs() <= 90.0,

@@ -68,6 +68,11 @@ pub const KIND: RigKind = RigKind {
 /// Step budget of one pull: 50 ms of pulling at dt 5e-7 s, 5 mm at 0.1 m/s, about 20 times
 /// the junction's stretch at break in the seed's ranges.
 pub const MAX_STEPS: u64 = 100_000;
+/// Fastest gripper speed the rig accepts, m/s: the pull must stay quasi-static. Measured on
+/// the shipped plant (2026-11-26): the detachment force is 3.553 N at 0.1 m/s, 3.396 N at 10
+/// m/s (−4 % of the static 3.554 N) and 3.017 N at 30 m/s (−15 %); at 1 000 m/s the gripper
+/// outran the junction and the rig reported no detachment and 0 N.
+pub const MAX_PULL_SPEED_M_S: f64 = 10.0;
 
 /// Which property of the rig a factor sets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]

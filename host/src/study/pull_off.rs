@@ -91,11 +91,16 @@ pub(crate) fn validate(
     let mut err = |key: KeyPath, reason: String| errors.push(src.error(&key, reason));
 
     let at = root.key("rig");
-    if !(rig.pull_speed_m_s.is_finite() && rig.pull_speed_m_s > 0.0) {
+    let max_speed = crate::rigs::pull_off::MAX_PULL_SPEED_M_S;
+    if !(rig.pull_speed_m_s.is_finite()
+        && rig.pull_speed_m_s > 0.0
+        && rig.pull_speed_m_s <= max_speed)
+    {
         err(
             at.key("pull_speed_m_s"),
             format!(
-                "must be a positive number of m/s, got {}",
+                "must be a positive number of m/s up to {max_speed} (a quasi-static pull), \
+                 got {}",
                 rig.pull_speed_m_s
             ),
         );
