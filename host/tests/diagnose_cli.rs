@@ -120,9 +120,23 @@ fn bad_input_is_a_clear_error() {
     ]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("must be >= 0"));
+    // Issue 23: noise that would bury the truth is refused, and nothing is written (--noise
+    // 1e300 once wrote values of 1e300).
+    let dir = tempfile::tempdir().unwrap();
+    let never = dir.path().join("never.toml");
+    let out = arachis(&[
+        "synth",
+        TEMPLATE,
+        "--noise",
+        "1e300",
+        "--out",
+        never.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("would be noise alone"));
+    assert!(!never.exists());
     // Issue 23: --plots naming a file is refused at once, with its path (it once ran the
     // whole fit, then said "File exists (os error 17)").
-    let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("plots.svg");
     std::fs::write(&file, "").unwrap();
     let measured = concat!(

@@ -23,6 +23,11 @@ pub struct NoiseSpec {
     pub per_rig: Vec<(String, f64)>,
 }
 
+/// Largest noise SD, as a multiple of the largest |true value| of the series it is added to:
+/// beyond it the measurements carry no trace of the model (`--noise 1e300` once wrote values
+/// of 1e300 into a study).
+pub const MAX_NOISE_RATIO: f64 = 10.0;
+
 impl NoiseSpec {
     /// SD for `rig`, falling back to the experiment's `noise_sd`.
     pub fn sd(&self, rig: &str, study_sd: Option<f64>) -> Result<f64> {
@@ -80,6 +85,14 @@ pub fn add_noise(
     let mut out = Vec::new();
     for (ei, s) in series.iter().enumerate() {
         let sd = noise.sd(&s.experiment, s.noise_sd)?;
+        let largest = truth[ei].iter().fold(0.0f64, |m, y| m.max(y.abs()));
+        if largest > 0.0 && sd > MAX_NOISE_RATIO * largest {
+            bail!(
+                "noise SD {sd:e} for {} is more than {MAX_NOISE_RATIO} times its largest true \
+                 value ({largest:e}): the synthetic measurements would be noise alone",
+                s.experiment
+            );
+        }
         let normal = Normal::new(0.0, sd)?;
         let mut points = Vec::new();
         for (pi, pt) in s.points.iter().enumerate() {
