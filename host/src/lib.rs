@@ -18,6 +18,7 @@ pub mod limits;
 pub mod nearest_name;
 pub mod optimize;
 pub mod plant;
+pub mod plausible;
 pub mod report;
 pub mod repose;
 pub mod rigs;

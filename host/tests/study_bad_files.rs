@@ -337,3 +337,28 @@ fn a_file_that_is_not_utf8_is_refused_at_its_line() {
     assert!(errors.contains("not UTF-8 text"), "{errors}");
     assert!(errors.contains("line 3"), "{errors}");
 }
+
+/// Issue 23: values the contact model admits but no agricultural study has (a density or a
+/// gravity of 1e300, a shear modulus of 1e-300, a friction of 1e300, a repose angle of
+/// −31.06°) are refused at their keys, naming the plausible range (`src/plausible.rs`).
+#[test]
+fn implausible_values_are_refused_at_their_keys() {
+    let name = "implausible_values.toml";
+    let errors = rejected(name);
+    for (key, text) in [
+        ("materials.pod.density_kg_m3", "density_kg_m3 = 1e300"),
+        (
+            "materials.steel.shear_modulus_pa",
+            "shear_modulus_pa = 1e-300",
+        ),
+        (
+            r#"pairs."pod-steel".static_friction"#,
+            "static_friction = 1e300",
+        ),
+        ("measurements[1].mean", "mean = -31.06"),
+        ("plan.simulation.gravity_m_s2", "gravity_m_s2 = 1e300"),
+    ] {
+        let e = at(&errors, key);
+        check(e, name, line_of(name, text, 1), "outside the plausible");
+    }
+}

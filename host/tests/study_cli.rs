@@ -33,3 +33,21 @@ fn bad_study_lists_every_error_and_exits_2() {
     );
     assert!(err.contains("low"), "{err}");
 }
+
+/// Issue 23: `--allow-extreme` accepts implausible values (research may need them) and warns
+/// once for each; without it they are refused with exit status 2.
+#[test]
+fn allow_extreme_turns_implausible_values_into_warnings() {
+    let study = "testdata/bad-studies/implausible_values.toml";
+    let refused = cli_support::arachis_at_root(&["study", "check", study]);
+    assert_eq!(refused.status.code(), Some(2));
+    let allowed = cli_support::arachis_at_root(&["study", "check", study, "--allow-extreme"]);
+    let err = String::from_utf8_lossy(&allowed.stderr);
+    assert!(allowed.status.success(), "{err}");
+    assert_eq!(
+        err.matches("warning: accepted with --allow-extreme")
+            .count(),
+        5,
+        "{err}"
+    );
+}

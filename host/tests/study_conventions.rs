@@ -88,7 +88,8 @@ fn a_misspelt_convention_is_refused_with_the_accepted_names_and_line() {
 
 /// Issue 23: a value the DEM core cannot hold is reported with the study key it came from
 /// and the value as written (μs = 1e300 once read "pair constant = 15.07 (internal units)",
-/// which named the pair's 8G* and no key).
+/// which named the pair's 8G* and no key). `study check` refuses it as implausible first;
+/// `--allow-extreme` lets it through to the core, which must still say what it refuses.
 #[test]
 fn a_value_the_core_refuses_is_named_by_its_key_and_value() {
     let text = seed_study_text().replace(
@@ -102,6 +103,7 @@ fn a_value_the_core_refuses_is_named_by_its_key_and_value() {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_arachis"))
         .args([
             "simulate",
+            "--allow-extreme",
             "--study",
             path.to_str().unwrap(),
             "incline_slide",

@@ -32,6 +32,10 @@ pub struct Cli {
     /// on it.
     #[arg(long, global = true, value_name = "N", allow_hyphen_values = true)]
     pub threads: Option<usize>,
+    /// Accept study values outside their plausible ranges (`arachis::plausible`: densities,
+    /// moduli, friction, gravity, measured angles), with a warning for each.
+    #[arg(long, global = true)]
+    pub allow_extreme: bool,
     /// What to do.
     #[command(subcommand)]
     pub command: Command,
@@ -82,6 +86,7 @@ impl Cli {
         if let Some(threads) = self.threads {
             crate::stepping::set_default_threads(threads)?;
         }
+        crate::plausible::allow_extreme(self.allow_extreme);
         match self.command {
             Command::Pour(args) => pour::run(args),
             Command::Lab(args) => lab::run(args),

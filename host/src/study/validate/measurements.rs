@@ -6,11 +6,16 @@ use std::collections::BTreeMap;
 use super::Validator;
 use crate::limits::Limits;
 use crate::nearest_name::nearest_name;
+use crate::plausible::ANGLE_DEG;
 use crate::rigs::catalogue;
 use crate::rigs::kind::{RigKind, WorldKind};
 use crate::study::file_format::StudyFile;
 use crate::study::key_path::KeyPath;
 use crate::study::measurements::Measurement;
+
+/// The unit of measured angles (repose, slide), whose values must lie in
+/// [`ANGLE_DEG`].
+const ANGLE_UNIT: &str = "deg";
 
 impl Validator<'_, '_> {
     pub(super) fn measurements(&mut self, file: &StudyFile) {
@@ -154,6 +159,10 @@ impl Validator<'_, '_> {
                 for (j, v) in values.iter().enumerate() {
                     if !v.is_finite() {
                         self.fail(&k.key("values").index(j), format!("{v} is not a finite number"));
+                    } else if m.unit == ANGLE_UNIT {
+                        if let Err(reason) = ANGLE_DEG.check(*v) {
+                            self.fail(&k.key("values").index(j), reason);
+                        }
                     }
                 }
                 for key in ["sd", "n"] {
@@ -166,6 +175,10 @@ impl Validator<'_, '_> {
             (None, Some(mean)) => {
                 if !mean.is_finite() {
                     self.fail(&k.key("mean"), format!("{mean} is not a finite number"));
+                } else if m.unit == ANGLE_UNIT {
+                    if let Err(reason) = ANGLE_DEG.check(mean) {
+                        self.fail(&k.key("mean"), reason);
+                    }
                 }
                 match m.n {
                     None => self.fail(&k.key("mean"), "a printed mean needs 'n', the number of replicates behind it"),

@@ -29,6 +29,7 @@ use crate::io::file_name::check_name_component;
 use crate::limits::Limits;
 use crate::nearest_name::nearest_name;
 use crate::plant::topology::BondSet;
+use crate::plausible::{Plausible, DENSITY_KG_M3, FRICTION, SHEAR_MODULUS_PA};
 use crate::rigs::pod_world::parameters;
 use crate::rigs::pod_world::sections::{Particles, Spheres};
 use crate::rigs::pod_world::Pods;
@@ -115,6 +116,19 @@ impl Validator<'_, '_> {
         }
     }
 
+    /// `limit`, then the plausible range (only for a value the model admits, so one fault
+    /// gets one message).
+    fn plausible(&mut self, key: &KeyPath, value: f64, limits: Limits, range: Plausible) {
+        match limits.check(value) {
+            Err(reason) => self.fail(key, reason),
+            Ok(()) => {
+                if let Err(reason) = range.check(value) {
+                    self.fail(key, reason);
+                }
+            }
+        }
+    }
+
     fn header(&mut self, file: &StudyFile) {
         let Some(header) = &file.study else { return };
         let at = KeyPath::root().key("study");
@@ -150,12 +164,19 @@ impl Validator<'_, '_> {
             if !is_material_name(name) {
                 self.fail(&k, "a material name may hold only lower-case letters, digits and '_' ('-' joins pair names)");
             }
-            self.limit(&k.key("density_kg_m3"), m.density_kg_m3, Limits::Positive);
-            self.limit(&k.key("poisson"), m.poisson, Limits::Poisson);
-            self.limit(
-                &k.key("shear_modulus_pa"),
-                m.shear_modulus_pa,
+            let (density, shear) = (m.density_kg_m3, m.shear_modulus_pa);
+            self.plausible(
+                &k.key("density_kg_m3"),
+                density,
                 Limits::Positive,
+                DENSITY_KG_M3,
+            );
+            self.limit(&k.key("poisson"), m.poisson, Limits::Poisson);
+            self.plausible(
+                &k.key("shear_modulus_pa"),
+                shear,
+                Limits::Positive,
+                SHEAR_MODULUS_PA,
             );
         }
     }
@@ -288,7 +309,11 @@ impl Validator<'_, '_> {
                 let varied = registered.is_some_and(|p| {
                     file.parameters.contains_key(p.name) || intended.contains(p.name)
                 });
+                let friction = property != "restitution";
                 match (pair.property(property), registered) {
+                    (Some(value), Some(spec)) if friction => {
+                        self.plausible(&pk, value, spec.limits, FRICTION)
+                    }
                     (Some(value), Some(spec)) => self.limit(&pk, value, spec.limits),
                     (Some(value), None) => self.limit(&pk, value, pair_limits(property)),
                     (None, _) if varied => {}

@@ -362,7 +362,12 @@ impl Validator<'_, '_> {
                 ),
             );
         }
-        self.limit(&sim.key("gravity_m_s2"), p.gravity_m_s2, Limits::Positive);
+        self.plausible(
+            &sim.key("gravity_m_s2"),
+            p.gravity_m_s2,
+            Limits::Positive,
+            crate::plausible::GRAVITY_M_S2,
+        );
         let r = sim.key("repose");
         let rs = &p.repose;
         for (key, value) in [
