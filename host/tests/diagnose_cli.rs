@@ -135,6 +135,25 @@ fn bad_input_is_a_clear_error() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("would be noise alone"));
     assert!(!never.exists());
+    // Repeated options were read as their first or last value without a word.
+    for (args, message) in [
+        (
+            vec!["--hidden", "drag=0.3", "--hidden", "drag=0.5"],
+            "--hidden gives 'drag' twice",
+        ),
+        (
+            vec!["--noise", "0.01", "--noise", "0.02"],
+            "--noise gives the SD for every experiment twice",
+        ),
+    ] {
+        let mut all = vec!["synth", TEMPLATE, "--out", never.to_str().unwrap()];
+        all.extend(args);
+        let out = arachis(&all);
+        assert_eq!(out.status.code(), Some(2));
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(message), "{err}");
+        assert!(!never.exists());
+    }
     // Issue 23: --plots naming a file is refused at once, with its path (it once ran the
     // whole fit, then said "File exists (os error 17)").
     let file = dir.path().join("plots.svg");

@@ -123,6 +123,16 @@ fn bad_fit_files_and_goals_exit_2_with_clear_messages() {
             "\"low\": 0.340, \"high\": 0.327",
         ),
     );
+    // Issue 23: a key given twice was read as whichever came last.
+    let twice = write(
+        dir.path(),
+        "twice.json",
+        &good.replacen(
+            "\"response\": \"angle_deg\"",
+            "\"response\": \"force_n\", \"response\": \"angle_deg\"",
+            1,
+        ),
+    );
     let target = "angle_deg=target:31.06";
     let eq22 = fixture();
     let cases: Vec<(&Path, &str, String)> = vec![
@@ -137,6 +147,11 @@ fn bad_fit_files_and_goals_exit_2_with_clear_messages() {
             "unknown.json: coefficients[9].term: unknown term 'x9^2'".into(),
         ),
         (&cubic, target, "unknown term 'x5^3'".into()),
+        (
+            &twice,
+            target,
+            "twice.json: file: the key 'response' appears twice in one object".into(),
+        ),
         (
             &broken,
             target,

@@ -209,6 +209,28 @@ fn level_off_the_printed_table_names_line_and_column() {
     );
 }
 
+/// Issue 23: a factor given twice in --levels was read at its first levels.
+#[test]
+fn a_factor_given_twice_in_levels_is_refused() {
+    let text = "A,y\n0.327,1\n0.340,2\n0.327,1.5\n0.340,2.5\n";
+    let (output, _) = analyze_text(
+        "twice.csv",
+        text,
+        &[
+            "--model",
+            "linear",
+            "--levels",
+            "A=0.327:0.340",
+            "--levels",
+            "A=0:1",
+        ],
+    );
+    assert_fails_with(
+        &output,
+        "--levels gives factor 'A' twice ('A=0.327:0.340' and 'A=0:1')",
+    );
+}
+
 #[test]
 fn missing_file_is_an_error() {
     let output = arachis(&[

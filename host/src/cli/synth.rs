@@ -53,10 +53,20 @@ pub fn run(args: Args) -> Result<()> {
     let series = study.series();
     let model = Model::new(&study, &experiments(&study))?;
     let mut hidden = Vec::new();
-    for h in &args.hidden {
+    for (i, h) in args.hidden.iter().enumerate() {
         let (name, value) = h
             .split_once('=')
             .ok_or_else(|| anyhow!("--hidden '{h}': expected EFFECT=VALUE"))?;
+        // An effect given twice was hidden at its last value (issue 23).
+        if let Some(first) = args.hidden[..i].iter().find(|g| {
+            g.split_once('=')
+                .is_some_and(|(n, _)| n.trim() == name.trim())
+        }) {
+            anyhow::bail!(
+                "--hidden gives '{}' twice ('{first}' and '{h}')",
+                name.trim()
+            );
+        }
         hidden.push((
             model.catalogue.effect(name.trim())?,
             number(value, "--hidden")?,
@@ -65,6 +75,12 @@ pub fn run(args: Args) -> Result<()> {
     let mut noise = NoiseSpec::default();
     for n in &args.noise {
         match n.split_once('=') {
+            None if noise.all.is_some() => {
+                anyhow::bail!("--noise gives the SD for every experiment twice ('{n}' again)")
+            }
+            Some((rig, _)) if noise.per_rig.iter().any(|(r, _)| r == rig.trim()) => {
+                anyhow::bail!("--noise gives '{}' twice ('{n}' again)", rig.trim())
+            }
             None => noise.all = Some(number(n, "--noise")?),
             Some((rig, v)) => {
                 let rig = rig.trim();

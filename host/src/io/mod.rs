@@ -5,6 +5,7 @@
 
 pub mod atomic;
 pub mod file_name;
+pub mod json_keys;
 pub mod table;
 pub mod text;
 

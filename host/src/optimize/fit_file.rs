@@ -74,6 +74,7 @@ impl FitFile {
             place: place.to_owned(),
             reason,
         };
+        crate::io::json_keys::check_unique_keys(text).map_err(|reason| err("file", reason))?;
         let root: Value = serde_json::from_str(text).map_err(|e| {
             err(
                 &format!("line {} column {}", e.line(), e.column()),

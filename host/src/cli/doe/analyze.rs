@@ -93,6 +93,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .iter()
         .map(|spec| parse_levels(spec, args.alpha))
         .collect::<anyhow::Result<Vec<_>>>()?;
+    // A factor given twice was read at its first levels (issue 23).
+    for (i, (name, _)) in levels.iter().enumerate() {
+        if let Some(first) = levels[..i].iter().position(|(n, _)| n == name) {
+            bail!(
+                "--levels gives factor '{name}' twice ('{}' and '{}')",
+                args.levels[first],
+                args.levels[i]
+            );
+        }
+    }
     let read = read_design_table(&table, &args.response, args.factors.as_deref(), &levels)?;
     let order = ModelOrder::from(args.model);
     let anova = analyze(&read.design, order).with_context(|| {
