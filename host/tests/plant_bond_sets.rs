@@ -5,6 +5,7 @@
 //! `arachis plant` prints the same counts with seed 001's 191 / 201 / 150 beside them.
 
 use std::fmt::Write as _;
+use std::path::Path;
 use std::process::Command;
 
 use arachis::plant::generate;
@@ -125,15 +126,20 @@ fn generated_bond_sets_match_counts_from_the_topology() {
     assert_eq!(expected(&t)[0].1, 2 + 3 + 4 + 1);
 }
 
+/// `arachis plant --topology FILE`, with FILE holding `text` in `dir`.
+fn plant(dir: &Path, name: &str, text: &str) -> std::process::Output {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    Command::new(env!("CARGO_BIN_EXE_arachis"))
+        .args(["plant", "--topology", path.to_str().unwrap()])
+        .output()
+        .unwrap()
+}
+
 #[test]
 fn plant_command_prints_the_counts_beside_seed_001s() {
     let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("bushy.toml");
-    std::fs::write(&path, bushy()).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_arachis"))
-        .args(["plant", "--topology", path.to_str().unwrap()])
-        .output()
-        .unwrap();
+    let out = plant(dir.path(), "bushy.toml", &bushy());
     assert!(
         out.status.success(),
         "{}",
@@ -149,12 +155,11 @@ fn plant_command_prints_the_counts_beside_seed_001s() {
     assert_eq!(v["seed001"]["pod_pod"], 201);
     assert_eq!(v["seed001"]["stem_leaf"], 150);
 
-    let bad = dir.path().join("bad.toml");
-    std::fs::write(&bad, "[[part]]\nname = \"peg\"\nkind = \"pod_stalk\"\n").unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_arachis"))
-        .args(["plant", "--topology", bad.to_str().unwrap()])
-        .output()
-        .unwrap();
+    let out = plant(
+        dir.path(),
+        "bad.toml",
+        "[[part]]\nname = \"peg\"\nkind = \"pod_stalk\"\n",
+    );
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("bad plant topology"), "{err}");
@@ -163,13 +168,8 @@ fn plant_command_prints_the_counts_beside_seed_001s() {
 
     // A bond set no bond uses is a misspelt one: refused, naming it and the sets used
     // (`[bonds.stemm]` was once accepted silently).
-    let extra = dir.path().join("extra.toml");
     let set = "\n[bonds.stemm]\nkn_n_m3 = 1.0e10\nkt_n_m3 = 4.0e9\nsigma_c_pa = 1e6\ntau_c_pa = 1e6\nradius_m = 1e-3\n";
-    std::fs::write(&extra, format!("{SMALL}{set}")).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_arachis"))
-        .args(["plant", "--topology", extra.to_str().unwrap()])
-        .output()
-        .unwrap();
+    let out = plant(dir.path(), "extra.toml", &format!("{SMALL}{set}"));
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("extra.toml"), "{err}");
