@@ -67,6 +67,19 @@ fn run_ok(args: &[&str]) -> (String, String) {
     (stdout, stderr)
 }
 
+/// The arguments of `arachis export liggghts STUDY --out OUT EXTRA...`.
+fn export_args<'a>(study: &'a Path, out: &'a Path, extra: &[&'a str]) -> Vec<&'a str> {
+    let mut args = vec![
+        "export",
+        "liggghts",
+        study.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    args
+}
+
 /// The observation details of `arachis simulate --json EXPERIMENT` on `study` (with `--seed
 /// SEED` when given): the rig's own time step and geometry.
 fn rig_details(study: &Path, experiment: &str, seed: Option<&str>) -> Value {
@@ -104,15 +117,7 @@ fn the_deck_holds_the_rigs_particles_time_step_and_cylinder() {
     let dir = tempfile::tempdir().unwrap();
     let study = write(dir.path(), "study.toml", &sphere_study(false));
     let out = dir.path().join("deck");
-    let (_, stderr) = run_ok(&[
-        "export",
-        "liggghts",
-        study.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--seed",
-        "3",
-    ]);
+    let (_, stderr) = run_ok(&export_args(&study, &out, &["--seed", "3"]));
     assert!(!stderr.contains("warning"), "{stderr}");
     let input = std::fs::read_to_string(out.join("in.repose")).unwrap();
     let data = std::fs::read_to_string(out.join("particles.data")).unwrap();
@@ -189,25 +194,13 @@ fn the_deck_holds_the_rigs_particles_time_step_and_cylinder() {
 fn pods_are_refused_and_an_edem_pair_is_warned_about() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("deck");
-    let refused = arachis(&[
-        "export",
-        "liggghts",
-        seed_study().to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let refused = arachis(&export_args(&seed_study(), &out, &[]));
     assert_eq!(refused.status.code(), Some(2));
     let err = String::from_utf8_lossy(&refused.stderr);
     assert!(err.contains("no multi-sphere particles"), "{err}");
     assert!(!out.exists(), "a refused export wrote {}", out.display());
     let study = write(dir.path(), "edem.toml", &sphere_study(true));
-    let (_, stderr) = run_ok(&[
-        "export",
-        "liggghts",
-        study.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let (_, stderr) = run_ok(&export_args(&study, &out, &[]));
     assert!(
         stderr.contains("warning: pair pod-pod is read in conventions the deck does not have"),
         "{stderr}"
@@ -225,15 +218,11 @@ fn the_incline_deck_holds_the_rigs_sphere_time_step_and_tilt_schedule() {
     let text = sphere_study(false).replace("liggghts-cdt", "liggghts-epsd2");
     let study = write(dir.path(), "study.toml", &text);
     let out = dir.path().join("deck");
-    let (stdout, stderr) = run_ok(&[
-        "export",
-        "liggghts",
-        study.to_str().unwrap(),
-        "--experiment",
-        "incline_slide",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let (stdout, stderr) = run_ok(&export_args(
+        &study,
+        &out,
+        &["--experiment", "incline_slide"],
+    ));
     assert!(!stderr.contains("warning"), "{stderr}");
     assert!(stdout.contains("liggghts -in in.incline"), "{stdout}");
     assert!(!out.join("cylinder.stl").exists());
@@ -260,15 +249,11 @@ fn the_incline_deck_holds_the_rigs_sphere_time_step_and_tilt_schedule() {
     assert!(input.contains("rolling_friction epsd2 limitForce on"));
     // No deck for the compression test: refused with the rigs that have one, nothing written.
     let none = dir.path().join("none");
-    let refused = arachis(&[
-        "export",
-        "liggghts",
-        study.to_str().unwrap(),
-        "--experiment",
-        "compression",
-        "--out",
-        none.to_str().unwrap(),
-    ]);
+    let refused = arachis(&export_args(
+        &study,
+        &none,
+        &["--experiment", "compression"],
+    ));
     assert_eq!(refused.status.code(), Some(2));
     let err = String::from_utf8_lossy(&refused.stderr);
     assert!(err.contains("repose, incline_slide"), "{err}");
@@ -284,13 +269,7 @@ fn epsd2_pairs_give_an_epsd2_deck_and_mixed_pairs_a_warning() {
     let export = |name: &str, text: &str| {
         let study = write(dir.path(), name, text);
         let out = dir.path().join(name.replace(".toml", ""));
-        let (_, stderr) = run_ok(&[
-            "export",
-            "liggghts",
-            study.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-        ]);
+        let (_, stderr) = run_ok(&export_args(&study, &out, &[]));
         (
             std::fs::read_to_string(out.join("in.repose")).unwrap(),
             stderr,

@@ -105,6 +105,16 @@ impl StorageLengths {
         }
     }
 
+    /// The same lengths, with room for effect history when one of `pairs` keeps some
+    /// ([`crate::pair::PairSpec::needs_effect_history`]: LIGGGHTS' `epsd2` rolling).
+    pub fn with_effects_for(self, pairs: &[crate::pair::PairSpec]) -> Self {
+        if pairs.iter().any(|p| p.needs_effect_history()) {
+            self.with_effects()
+        } else {
+            self
+        }
+    }
+
     /// The same lengths with `per_sphere` neighbour-list entries per sphere on average.
     pub fn with_neighbours_per_sphere(self, per_sphere: usize) -> Self {
         let neighbours = 2 * self.spheres * per_sphere;

@@ -216,12 +216,9 @@ fn pour<S: Scalar>(args: &Args) -> anyhow::Result<(PourReport, Vec<ParticleFrame
         seed: args.seed,
     };
     let (pod_pod, pod_steel) = pairs(args);
-    let lengths = bed.storage_lengths();
-    let lengths = if pod_pod.needs_effect_history() || pod_steel.needs_effect_history() {
-        lengths.with_effects()
-    } else {
-        lengths
-    };
+    let lengths = bed
+        .storage_lengths()
+        .with_effects_for(&[pod_pod, pod_steel]);
     let mut arenas = OwnedStorage::<S>::new(lengths);
     let mut stepper = Stepper::<S>::new(default_threads())?;
     let bar = progress_bar(args.steps);

@@ -65,14 +65,6 @@ impl Deck {
     pub fn input_name(&self) -> &'static str {
         self.files[0].name
     }
-
-    /// The text of file `name`, if the deck has one.
-    pub fn file(&self, name: &str) -> Option<&str> {
-        self.files
-            .iter()
-            .find(|f| f.name == name)
-            .map(|f| f.text.as_str())
-    }
 }
 
 /// The experiments that export, by name (for error messages).

@@ -234,14 +234,9 @@ impl Arena {
     /// `inputs`' pairs (an effect-history arena when a pair keeps one, as LIGGGHTS' `epsd2`
     /// rolling convention does).
     pub fn new(inputs: &RunInputs, bodies: usize, spheres: usize) -> Self {
-        let lengths = StorageLengths::for_spheres(bodies.max(1), spheres.max(1));
-        let effects =
-            inputs.pod_pod.needs_effect_history() || inputs.pod_wall.needs_effect_history();
-        Arena(OwnedStorage::new(if effects {
-            lengths.with_effects()
-        } else {
-            lengths
-        }))
+        let lengths = StorageLengths::for_spheres(bodies.max(1), spheres.max(1))
+            .with_effects_for(&[inputs.pod_pod, inputs.pod_wall]);
+        Arena(OwnedStorage::new(lengths))
     }
 
     /// A world over this storage.
