@@ -7,9 +7,9 @@
 //!
 //! The temporary file is named `.NAME.arachis.HOST.PID.XXXXXX` after its destination NAME, the
 //! machine and the writing process. A process killed mid-write (`kill -9`) cannot remove it,
-//! so the next write of the same destination removes every such file left by a process of
-//! this machine that is no longer running; files of live processes, and of other machines
-//! sharing the folder, are left alone. Outputs are created with mode 0666 less the umask
+//! so the next run's first write of the same destination removes every such file left by a
+//! process of this machine that is no longer running (each folder is listed once per run);
+//! files of live processes, and of other machines sharing the folder, are left alone. Outputs are created with mode 0666 less the umask
 //! (0644 under the usual umask 022), as a plain `File::create` would.
 //!
 //! ```
@@ -19,8 +19,10 @@
 //! assert_eq!(std::fs::read_to_string(&path).unwrap(), "A,B\n-1,1\n");
 //! ```
 
+use std::collections::BTreeMap;
 use std::io::{BufWriter, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::{Mutex, OnceLock, PoisonError};
 
 use anyhow::Context;
 
@@ -74,12 +76,16 @@ fn temporary_stem(path: &Path) -> String {
 }
 
 /// This machine's name (Linux), or `localhost`; dots are dropped so the name parses back.
-fn host_name() -> String {
-    std::fs::read_to_string("/proc/sys/kernel/hostname")
-        .map(|h| h.trim().replace('.', "_"))
-        .ok()
-        .filter(|h| !h.is_empty())
-        .unwrap_or_else(|| "localhost".into())
+/// Read once per process.
+fn host_name() -> &'static str {
+    static HOST: OnceLock<String> = OnceLock::new();
+    HOST.get_or_init(|| {
+        std::fs::read_to_string("/proc/sys/kernel/hostname")
+            .map(|h| h.trim().replace('.', "_"))
+            .ok()
+            .filter(|h| !h.is_empty())
+            .unwrap_or_else(|| "localhost".into())
+    })
 }
 
 /// `true` when process `pid` of this machine is running. Without `/proc` (not Linux) every
@@ -89,29 +95,51 @@ fn process_running(pid: u32) -> bool {
     !proc.is_dir() || proc.join(pid.to_string()).exists()
 }
 
+/// The temporary files in a folder that dead processes of this machine left, by folder: each
+/// folder is listed once per process, not once per write (a run writing thousands of VTK
+/// frames into one folder would otherwise list it for every frame).
+static STALE: Mutex<BTreeMap<PathBuf, Vec<String>>> = Mutex::new(BTreeMap::new());
+
 /// Removes the temporary files of the destination named by `stem` in `dir` that a process
 /// of this machine left behind when it died. Errors are ignored: a file that cannot be
 /// listed or removed costs disk space, not correctness.
 fn remove_stale_temporaries(dir: &Path, stem: &str) {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    let host = host_name();
-    for entry in entries.flatten() {
-        let name = entry.file_name();
-        let Some(rest) = name.to_str().and_then(|n| n.strip_prefix(stem)) else {
-            continue;
-        };
-        // HOST.PID.XXXXXX, the random part without dots.
-        let mut parts = rest.rsplitn(3, '.');
-        let (_random, pid, owner) = (parts.next(), parts.next(), parts.next());
-        let dead = pid
-            .and_then(|p| p.parse::<u32>().ok())
-            .is_some_and(|p| !process_running(p));
-        if owner == Some(host.as_str()) && dead {
-            let _ = std::fs::remove_file(entry.path());
+    let mut stale = STALE.lock().unwrap_or_else(PoisonError::into_inner);
+    let names = stale
+        .entry(dir.to_path_buf())
+        .or_insert_with(|| stale_in(dir));
+    names.retain(|name| {
+        let ours = name.starts_with(stem);
+        if ours {
+            let _ = std::fs::remove_file(dir.join(name));
         }
-    }
+        !ours
+    });
+}
+
+/// The names in `dir` of temporary files (`.NAME.arachis.HOST.PID.XXXXXX`) whose writer, a
+/// process of this machine, is no longer running.
+fn stale_in(dir: &Path) -> Vec<String> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    entries
+        .flatten()
+        .filter_map(|e| e.file_name().into_string().ok())
+        .filter(|name| {
+            // …arachis.HOST.PID.XXXXXX, the random part without dots.
+            let mut parts = name.rsplitn(4, '.');
+            let (_random, pid, owner, head) =
+                (parts.next(), parts.next(), parts.next(), parts.next());
+            let dead = pid
+                .and_then(|p| p.parse::<u32>().ok())
+                .is_some_and(|p| !process_running(p));
+            name.starts_with('.')
+                && head.is_some_and(|h| h.ends_with(".arachis"))
+                && owner == Some(host_name())
+                && dead
+        })
+        .collect()
 }
 
 /// Writes `content` to `path` atomically (see [`write_atomic`]).
