@@ -3,6 +3,9 @@
 //!   Hertz–Mindlin + CDT terms on);
 //! - `contact_fused`: the fused base law ([`arachis_core::contact::fused`]) on the same
 //!   contact, from the narrow phase's inputs;
+//! - `contact_lanes`: the narrow-lane kernel ([`arachis_core::contact::lanes`]) on sixteen
+//!   pod–pod contacts of the settled bed at once, in each build this processor runs, against
+//!   the Q32.32 fused law on the same sixteen (`fixed`, one after another);
 //! - `contact_roots`: the two square roots the narrow phase takes per contact, a = √(R*α) and
 //!   √(a·m*) (seed 000 eqs. (2), (4)), over overlaps of the settled bed.
 //!
@@ -11,7 +14,8 @@
 //!
 //! Run: `cargo bench -p arachis-benches --bench contact_law`.
 
-use arachis_core::contact::fused::{evaluate, FusedContact, Geometry};
+use arachis_core::contact::fused::{evaluate, FusedContact, FusedPair, Geometry};
+use arachis_core::contact::lanes::{evaluate_with, Isa, LaneBatch, LANES};
 use arachis_core::contact::{ContactKinematics, ContactState};
 use arachis_core::material::MaterialSpec;
 use arachis_core::num::Envelope;
@@ -151,5 +155,90 @@ fn fused(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, law, roots, fused);
+/// [`LANES`] pod–pod contacts of the settled bed: R 4 mm, overlaps near 0.018 mm, normals and
+/// velocities varied (internal units), as the fused law and as one lane batch.
+fn batch_contacts() -> (Vec<FusedContact<f64>>, LaneBatch, FusedPair<f64>) {
+    let pod = MaterialSpec {
+        youngs_modulus_pa: 8.43e6,
+        poisson: 0.386,
+        density_kg_m3: 582.0,
+    }
+    .validate()
+    .expect("pod material");
+    let params: PairParams<f64> =
+        PairParams::new(&pod, &pod, &PairSpec::hertz_mindlin(0.335, 0.854, 0.346));
+    let p = params.fused;
+    let raw = |x: f64| (x * 4294967296.0).round() as i64;
+    let mut batch = LaneBatch::default();
+    let mut contacts = Vec::new();
+    for l in 0..LANES {
+        let t = 0.3 * l as f64;
+        let dist = 7.982 - 0.002 * l as f64;
+        let n = Vec3::new(0.6 * t.cos(), 0.6 * t.sin(), 0.8);
+        let c = FusedContact {
+            geometry: Geometry::Spheres {
+                d: n.scale(dist),
+                d2: dist * dist,
+                r_j: 4.0,
+            },
+            r_i: 4.0,
+            r_star: 2.0,
+            m_star: 0.078,
+            v_centres: Vec3::new(0.003, -0.004 * l as f64, 0.0012),
+            spin_i: Vec3::new(0.01, 0.0, -0.02),
+            spin_j: Vec3::new(0.0, 0.015, 0.001 * l as f64),
+            offset_i: None,
+            offset_j: None,
+            dt: 0.02,
+        };
+        for k in 0..3 {
+            let (d, v, wi, wj) = (n.scale(dist), c.v_centres, c.spin_i, c.spin_j);
+            let pick = |x: Vec3<f64>| [x.x, x.y, x.z][k];
+            batch.d[k][l] = raw(pick(d));
+            batch.v[k][l] = raw(pick(v));
+            batch.spin_i[k][l] = raw(pick(wi));
+            batch.spin_j[k][l] = raw(pick(wj));
+            batch.delta[k][l] = raw([1e-4, -2e-4, 0.0][k]);
+        }
+        batch.r_i[l] = raw(4.0);
+        batch.r_j[l] = raw(4.0);
+        batch.r_star[l] = raw(2.0);
+        batch.m_star[l] = raw(0.078);
+        batch.kn[l] = raw(p.four_thirds_e_star);
+        batch.cn[l] = raw(p.normal_damping);
+        batch.kt[l] = raw(p.eight_g_star);
+        batch.ct[l] = raw(p.tangential_damping);
+        batch.mu[l] = raw(p.friction);
+        batch.mu_r[l] = raw(p.rolling_friction);
+        contacts.push(c);
+    }
+    (contacts, batch, p)
+}
+
+fn lanes(c: &mut Criterion) {
+    let mut g = c.benchmark_group("contact_lanes");
+    g.throughput(Throughput::Elements(LANES as u64));
+    let (contacts, batch, p) = batch_contacts();
+    let dt = (0.02 * 4294967296.0f64).round() as i64;
+    for isa in Isa::ALL.into_iter().filter(|i| i.available()) {
+        g.bench_function(format!("{isa:?}"), |b| {
+            b.iter(|| evaluate_with(isa, black_box(&batch), black_box(dt)))
+        });
+    }
+    let to = |x: f64| Fx::from_f64(x).to_fast();
+    let fixed: Vec<_> = contacts.iter().map(|c| c.map(to)).collect();
+    let pair = p.map(to);
+    let start = Vec3::new(to(1e-4), to(-2e-4), to(0.0));
+    g.bench_function("fixed", |b| {
+        b.iter(|| {
+            for c in fixed.iter() {
+                let mut delta = start;
+                black_box((evaluate(black_box(c), black_box(&pair), &mut delta), delta));
+            }
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, law, roots, fused, lanes);
 criterion_main!(benches);

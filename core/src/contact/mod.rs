@@ -50,6 +50,7 @@ pub mod fused;
 pub mod hertz_normal;
 pub mod history;
 pub mod hysteretic_normal;
+pub mod lanes;
 pub mod mindlin_tangential;
 pub mod normal_damping;
 pub mod rolling_cdt;

@@ -5,6 +5,7 @@
 
 pub mod fixed;
 pub mod fixed_fast;
+pub mod lanes;
 pub mod quantise;
 pub mod quat;
 pub mod scalar;
