@@ -3,8 +3,9 @@
 //! the layers of `docs/architecture.md` hold and each module can be read on its own.
 //!
 //! A module's imports are the `crate::NAME` paths in its files (its `NAME.rs` and everything
-//! under `NAME/`), outside comments and outside its `#[cfg(test)]` modules (a test may use
-//! the layers above the code it tests). The check is shown to fail on planted cycles.
+//! under `NAME/`), outside comments and outside its `#[cfg(test)]` modules, inline or in a
+//! file of their own (a test may use the layers above the code it tests). The check is shown
+//! to fail on planted cycles.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -27,12 +28,34 @@ fn read_crate(root: &Path) -> Sources {
     out
 }
 
-/// Appends the text of `path`, or of every `.rs` file below it.
+/// The modules that `mod.rs` of `dir` declares as `#[cfg(test)] mod NAME;`: test modules in
+/// files of their own.
+fn test_module_files(dir: &Path) -> BTreeSet<String> {
+    let source = std::fs::read_to_string(dir.join("mod.rs")).unwrap_or_default();
+    let mut names = BTreeSet::new();
+    let mut after_cfg_test = false;
+    for line in source.lines().map(str::trim) {
+        if after_cfg_test {
+            if let Some(name) = line.strip_prefix("mod ").and_then(|r| r.strip_suffix(';')) {
+                names.insert(format!("{name}.rs"));
+            }
+        }
+        after_cfg_test = line == "#[cfg(test)]";
+    }
+    names
+}
+
+/// Appends the text of `path`, or of every `.rs` file below it that is not a test module.
 fn read_tree(path: &Path, text: &mut String) {
     if path.is_dir() {
+        let tests = test_module_files(path);
         let mut entries: Vec<_> = std::fs::read_dir(path)
             .unwrap()
             .map(|e| e.unwrap().path())
+            .filter(|p| {
+                let name = p.file_name().unwrap_or_default().to_string_lossy();
+                !tests.contains(name.as_ref())
+            })
             .collect();
         entries.sort();
         for p in entries {
@@ -168,8 +191,16 @@ fn comments_and_tests_do_not_count_as_imports() {
     )
     .unwrap();
     std::fs::write(dir.path().join("high.rs"), "use crate::low::f;\n").unwrap();
+    // A test module in a file of its own (`#[cfg(test)] mod tests;`) counts as a test too;
+    // the module's other files still count.
+    let mid = dir.path().join("mid");
+    std::fs::create_dir(&mid).unwrap();
+    std::fs::write(mid.join("mod.rs"), "mod part;\n#[cfg(test)]\nmod tests;\n").unwrap();
+    std::fs::write(mid.join("part.rs"), "use crate::low::f;\n").unwrap();
+    std::fs::write(mid.join("tests.rs"), "use crate::high::Thing;\n").unwrap();
     let sources = read_crate(dir.path());
     let graph = imports(&sources);
     assert!(graph["low"].is_empty(), "{graph:?}");
     assert_eq!(graph["high"].iter().copied().collect::<Vec<_>>(), ["low"]);
+    assert_eq!(graph["mid"].iter().copied().collect::<Vec<_>>(), ["low"]);
 }

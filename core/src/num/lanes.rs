@@ -441,6 +441,17 @@ impl Soft {
     }
 }
 
+/// Whether any lane is set. The kernel skips work that no lane of a batch needs (sliding,
+/// clump levers): every build takes the same branch, so the bits stay the same.
+#[inline(always)]
+pub fn any(m: &Mask) -> bool {
+    let mut a = false;
+    for l in 0..LANES {
+        a |= m[l];
+    }
+    a
+}
+
 /// The per-lane ‘and’ of two masks.
 #[inline(always)]
 pub fn and(a: &Mask, b: &Mask) -> Mask {

@@ -7,7 +7,7 @@ use super::{
     LaneBatch, LaneLoads, DELTA_BITS, FORCE_BITS, LENGTH_BITS, MASS_BITS, SPEED_BITS, SPIN_BITS,
     STATE, TIMESTEP_BITS,
 };
-use crate::num::lanes::{bit_length, mul32, mul_sub_shr, shr_round, Lanes, Mask, Soft, LANES};
+use crate::num::lanes::{any, bit_length, mul32, mul_sub_shr, shr_round, Lanes, Mask, Soft, LANES};
 use crate::{lanes, mask, sum3, xyz};
 
 /// Fraction bits of velocities.
@@ -59,6 +59,9 @@ fn cross_shr(a: &[Lanes; 3], b: &[Lanes; 3], s: &Lanes) -> [Lanes; 3] {
 /// sphere (Q.25 arm, squared in Q.48), L for a single one.
 #[inline(always)]
 fn lever(n: &[Lanes; 3], len: &Lanes, o: &[Lanes; 3], clump: &Mask, sign: i64) -> Soft {
+    if !any(clump) {
+        return Soft::from_fixed(len, LENGTH);
+    }
     let arm: [Lanes; 3] = xyz!(|k| lanes!(|l| shr_round(
         o[k][l].wrapping_add(sign * shr_round(mul32(n[k][l], len[l]), UNIT)),
         1
@@ -164,29 +167,31 @@ pub(super) fn evaluate(b: &LaneBatch, dt: i64) -> LaneLoads {
         let lim = shr_round(limit32[l], s[l]);
         f2[l] > mul32(lim, lim)
     });
-    // |Ft| from f2 (in Q.(64 − 2s)), the ratio μs·Fn/|Ft| ≤ 1.
-    let f2_soft = Soft::from_fixed(&f2, 0).mul_pow_lanes(&lanes!(|l| 2 * s[l] - 2 * STATE));
-    let ratio = limit.mul(&f2_soft.rsqrt());
-    let dd: Lanes = lanes!(|l| sum3!(|k| mul32(d1_27[k][l], d1_27[k][l])));
-    let stretch2 = st.mul(&st).mul(&Soft::from_fixed(&dd, 2 * HISTORY));
-    let overstretched = stretch2.greater(&limit.mul(&limit));
-    let ratio_d = limit.mul(&stretch2.rsqrt());
-    for k in 0..3 {
-        let x_frac = lanes!(|l| STATE - s[l]);
-        let (scaled, _) = ratio.times_fixed_lanes(&ft_n[k], &x_frac, STATE);
-        let (scaled_d, _) = ratio_d.times_fixed(&d1_27[k], HISTORY, STATE);
-        for l in 0..LANES {
-            // Branch-free, so that the lanes stay in one vector.
-            let free = limit.m[l] > 0;
-            let capped = if free { scaled[l] } else { 0 };
-            let rescaled = if overstretched[l] {
-                scaled_d[l]
-            } else {
-                d1[k][l]
-            };
-            let history = if free { rescaled } else { 0 };
-            f_t[k][l] = if sliding[l] { capped } else { f_t[k][l] };
-            d1[k][l] = if sliding[l] { history } else { d1[k][l] };
+    if any(&sliding) {
+        // |Ft| from f2 (in Q.(64 − 2s)), the ratio μs·Fn/|Ft| ≤ 1.
+        let f2_soft = Soft::from_fixed(&f2, 0).mul_pow_lanes(&lanes!(|l| 2 * s[l] - 2 * STATE));
+        let ratio = limit.mul(&f2_soft.rsqrt());
+        let dd: Lanes = lanes!(|l| sum3!(|k| mul32(d1_27[k][l], d1_27[k][l])));
+        let stretch2 = st.mul(&st).mul(&Soft::from_fixed(&dd, 2 * HISTORY));
+        let overstretched = stretch2.greater(&limit.mul(&limit));
+        let ratio_d = limit.mul(&stretch2.rsqrt());
+        for k in 0..3 {
+            let x_frac = lanes!(|l| STATE - s[l]);
+            let (scaled, _) = ratio.times_fixed_lanes(&ft_n[k], &x_frac, STATE);
+            let (scaled_d, _) = ratio_d.times_fixed(&d1_27[k], HISTORY, STATE);
+            for l in 0..LANES {
+                // Branch-free, so that the lanes stay in one vector.
+                let free = limit.m[l] > 0;
+                let capped = if free { scaled[l] } else { 0 };
+                let rescaled = if overstretched[l] {
+                    scaled_d[l]
+                } else {
+                    d1[k][l]
+                };
+                let history = if free { rescaled } else { 0 };
+                f_t[k][l] = if sliding[l] { capped } else { f_t[k][l] };
+                d1[k][l] = if sliding[l] { history } else { d1[k][l] };
+            }
         }
     }
 
@@ -206,18 +211,21 @@ pub(super) fn evaluate(b: &LaneBatch, dt: i64) -> LaneLoads {
     let mut torque_j: [Lanes; 3] = xyz!(|k| {
         lanes!(|l| shr_round(mul32(tau[k][l], g.len_j[l]), lever_shift[l]).wrapping_neg())
     });
-    // o × F for clump spheres (zero offsets add nothing).
-    let s_f = narrowing(&force, &[0; LANES]);
-    let f_narrow = narrowed(&force, &s_f);
-    let offset_shift = lanes!(|l| LENGTH - s_f[l]);
+    // o × F for clump spheres (zero for single spheres: skipped when the batch has none).
     let o_i: [Lanes; 3] = xyz!(|k| lanes!(|l| shr_round(b.offset_i[k][l], STATE - LENGTH)));
     let o_j: [Lanes; 3] = xyz!(|k| lanes!(|l| shr_round(b.offset_j[k][l], STATE - LENGTH)));
-    let t_i = cross_shr(&o_i, &f_narrow, &offset_shift);
-    let t_j = cross_shr(&o_j, &f_narrow, &offset_shift);
-    for k in 0..3 {
-        for l in 0..LANES {
-            torque_i[k][l] = torque_i[k][l].wrapping_add(t_i[k][l]);
-            torque_j[k][l] = torque_j[k][l].wrapping_add(t_j[k][l]);
+    let clumps = any(&b.clump_i) || any(&b.clump_j);
+    if clumps {
+        let s_f = narrowing(&force, &[0; LANES]);
+        let f_narrow = narrowed(&force, &s_f);
+        let offset_shift = lanes!(|l| LENGTH - s_f[l]);
+        let t_i = cross_shr(&o_i, &f_narrow, &offset_shift);
+        let t_j = cross_shr(&o_j, &f_narrow, &offset_shift);
+        for k in 0..3 {
+            for l in 0..LANES {
+                torque_i[k][l] = torque_i[k][l].wrapping_add(t_i[k][l]);
+                torque_j[k][l] = torque_j[k][l].wrapping_add(t_j[k][l]);
+            }
         }
     }
     let t = Soft::from_fixed(&b.mu_r, STATE).mul(&f_n);
