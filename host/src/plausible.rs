@@ -64,6 +64,15 @@ pub const ANGLE_DEG: Plausible = Plausible {
     reason: "a repose or slide angle lies between flat and vertical",
 };
 
+/// A dimension of a plant organ (stem, stalk, pod, leaf length or diameter), mm.
+pub const PLANT_ORGAN_MM: Plausible = Plausible {
+    low: 0.01,
+    high: 5_000.0,
+    unit: "mm",
+    reason: "a peanut main stem is 45–76 cm (seed 000 §2.2.1, seed 001 Table 1); 5 m leaves \
+             room for any field crop",
+};
+
 /// Set by `--allow-extreme` for the whole process.
 static ALLOW_EXTREME: AtomicBool = AtomicBool::new(false);
 

@@ -73,7 +73,11 @@ fn an_unreadable_stl_is_rejected_before_any_simulation() {
         "pods.stl.normal",
         "unreadable STL 'scans/no-such-pod.stl'",
     );
-    rejected("not_an_stl.toml", "pods.stl.cocoon", "is not an STL file");
+    rejected(
+        "not_an_stl.toml",
+        "pods.stl.cocoon",
+        "fewer than the 84-byte binary header",
+    );
 }
 
 #[test]

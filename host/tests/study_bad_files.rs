@@ -175,7 +175,7 @@ fn missing_and_non_stl_files_are_rejected() {
         e,
         name,
         line_of(name, "not-an-stl.stl", 1),
-        "is not an STL file: 51 bytes",
+        "the file has 51 bytes, fewer than the 84-byte binary header, and does not start with 'solid'",
     );
 }
 

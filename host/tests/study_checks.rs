@@ -4,7 +4,6 @@
 
 use std::path::{Path, PathBuf};
 
-use arachis::study::stl_check::{check_stl, StlKind};
 use arachis::study::{Study, StudyErrors};
 
 fn valid_path() -> PathBuf {
@@ -259,41 +258,68 @@ fn poisson_above_half_is_an_explicit_choice_for_poisson_only() {
     );
 }
 
-#[test]
-fn stl_files_binary_and_ascii_pass_and_bad_sizes_fail() {
-    let dir = tempfile::tempdir().unwrap();
-    // Binary: 80-byte header, u32 count 2, 2 × 50 bytes.
-    let mut binary = vec![0u8; 80];
-    binary.extend_from_slice(&2u32.to_le_bytes());
-    binary.extend(std::iter::repeat_n(0u8, 100));
-    std::fs::write(dir.path().join("pod.stl"), &binary).unwrap();
-    assert_eq!(
-        check_stl(&dir.path().join("pod.stl")),
-        Ok(StlKind::Binary(2))
-    );
-    // One byte short: the size no longer matches 84 + 50·2 = 184.
-    std::fs::write(dir.path().join("short.stl"), &binary[..183]).unwrap();
-    let err = check_stl(&dir.path().join("short.stl")).unwrap_err();
-    assert!(
-        err.contains("183 bytes") && err.contains("needs 184 bytes"),
-        "{err}"
-    );
-    // ASCII.
-    let ascii = "solid pod\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid pod\n";
-    std::fs::write(dir.path().join("pod_ascii.stl"), ascii).unwrap();
-    assert_eq!(
-        check_stl(&dir.path().join("pod_ascii.stl")),
-        Ok(StlKind::Ascii)
-    );
-    // A directory is not a file.
-    assert!(check_stl(dir.path()).unwrap_err().contains("is not a file"));
+/// The closed 10 × 6 × 4 mm box of `testdata/shapes`, as binary STL: an 80-byte header, the
+/// u32 triangle count, then per triangle a normal, three vertices (f32) and a u16.
+fn binary_box() -> Vec<u8> {
+    let ascii = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../testdata/shapes/box_10x6x4_ascii.stl"),
+    )
+    .unwrap();
+    let vertices: Vec<f32> = ascii
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("vertex "))
+        .flat_map(|v| v.split_whitespace().map(|x| x.parse::<f32>().unwrap()))
+        .collect();
+    let triangles = vertices.len() / 9;
+    let mut out = vec![0u8; 80];
+    out.extend_from_slice(&(triangles as u32).to_le_bytes());
+    for t in vertices.chunks(9) {
+        out.extend(std::iter::repeat_n(0u8, 12));
+        for x in t {
+            out.extend_from_slice(&x.to_le_bytes());
+        }
+        out.extend_from_slice(&[0, 0]);
+    }
+    out
+}
 
-    // Through a study: the path is resolved against the study's folder.
-    let text = std::fs::read_to_string(valid_path()).unwrap().replace(
-        "single_grain = 0.1\n",
-        "single_grain = 0.1\n\n[pods.stl]\nnormal = \"pod.stl\"\ncocoon = \"pod_ascii.stl\"\n",
-    );
+/// A study's STL files go through the STL reader itself (`shapes::stl`): binary and ASCII
+/// closed meshes pass; a truncated file, an open mesh and a folder fail, each naming the file.
+#[test]
+fn stl_files_are_read_and_checked_closed_by_study_check() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut binary = binary_box();
+    std::fs::write(dir.path().join("pod.stl"), &binary).unwrap();
+    std::fs::copy(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../testdata/shapes/box_10x6x4_ascii.stl"),
+        dir.path().join("pod_ascii.stl"),
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("short.stl"), &binary[..binary.len() - 1]).unwrap();
+    let open = "solid pod\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid pod\n";
+    std::fs::write(dir.path().join("open.stl"), open).unwrap();
+    std::fs::create_dir(dir.path().join("folder.stl")).unwrap();
+    let study_with = |normal: &str, cocoon: &str| {
+        std::fs::read_to_string(valid_path()).unwrap().replace(
+            "single_grain = 0.1\n",
+            &format!(
+                "single_grain = 0.1\n\n[pods.stl]\nnormal = \"{normal}\"\ncocoon = \"{cocoon}\"\n"
+            ),
+        )
+    };
     let study_path = dir.path().join("study.toml");
+    for bad in ["short.stl", "open.stl", "folder.stl"] {
+        let err = Study::from_toml(&study_with("pod.stl", bad), &study_path)
+            .err()
+            .unwrap_or_else(|| panic!("{bad} was accepted"))
+            .to_string();
+        assert!(
+            err.contains("pods.stl.cocoon") && err.contains(bad),
+            "{bad}: {err}"
+        );
+    }
+    // Both closed meshes pass; the paths are resolved against the study's folder.
+    let text = study_with("pod.stl", "pod_ascii.stl");
     let study = Study::from_toml(&text, &study_path).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(study.stl_paths()[0], ("normal", dir.path().join("pod.stl")));
 

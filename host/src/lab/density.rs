@@ -12,11 +12,12 @@
 //! assert!((rho - 582.35).abs() < 0.01);
 //! ```
 
-use super::columns::positive;
+use super::columns::{positive, row_error};
 use super::error::LabError;
 use super::report::{LabReport, Quantity};
 use super::units::{KG_PER_G, M3_PER_ML};
 use crate::io::CsvTable;
+use crate::plausible::DENSITY_KG_M3;
 
 /// Column: pod mass, g.
 pub const MASS_COLUMN: &str = "mass_g";
@@ -29,7 +30,9 @@ pub fn density(mass_kg: f64, volume_m3: f64) -> f64 {
     mass_kg / volume_m3
 }
 
-/// Density of every replicate in `table` (columns [`MASS_COLUMN`], [`VOLUME_COLUMN`]).
+/// Density of every replicate in `table` (columns [`MASS_COLUMN`], [`VOLUME_COLUMN`]). A
+/// replicate whose density lies outside [`DENSITY_KG_M3`] (a typo such as a mass of 1e300 g)
+/// is refused with its line, unless `--allow-extreme`.
 pub fn analyze(table: &CsvTable) -> Result<LabReport, LabError> {
     let mass = positive(table, MASS_COLUMN, "mass")?;
     let volume = positive(table, VOLUME_COLUMN, "displaced volume")?;
@@ -38,6 +41,12 @@ pub fn analyze(table: &CsvTable) -> Result<LabReport, LabError> {
         .zip(&volume)
         .map(|(m, v)| density(m * KG_PER_G, v * M3_PER_ML))
         .collect();
+    for (row, &r) in rho.iter().enumerate() {
+        DENSITY_KG_M3.check(r).map_err(|reason| {
+            let reason = format!("density {reason}");
+            row_error(table, row, &[MASS_COLUMN, VOLUME_COLUMN], reason)
+        })?;
+    }
     let mut report = LabReport::new("density", table);
     report
         .quantities

@@ -69,6 +69,14 @@ pub enum PlantError {
         /// The value.
         value: f64,
     },
+    /// A dimension outside its plausible range ([`crate::plausible::PLANT_ORGAN_MM`]).
+    #[error("{what}: {reason}")]
+    Implausible {
+        /// What.
+        what: String,
+        /// The range and why.
+        reason: String,
+    },
     /// The pod shape could not be built or filled with spheres (`crate::shapes`).
     #[error("cannot build the pod from its shape: {0}")]
     PodShape(String),

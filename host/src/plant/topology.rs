@@ -31,6 +31,7 @@ use std::collections::BTreeMap;
 use serde::Deserialize;
 
 use super::error::PlantError;
+use crate::plausible::PLANT_ORGAN_MM;
 
 /// Part kinds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -218,7 +219,11 @@ impl Topology {
             ("leaf_length_mm", d.leaf_length_mm),
             ("leaf_diameter_mm", d.leaf_diameter_mm),
         ] {
-            positive(&format!("dimensions.{what}"), v)?;
+            let what = format!("dimensions.{what}");
+            positive(&what, v)?;
+            PLANT_ORGAN_MM
+                .check(v)
+                .map_err(|reason| PlantError::Implausible { what, reason })?;
         }
         for (what, v, lo, hi, rule) in [
             (

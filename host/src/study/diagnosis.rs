@@ -83,6 +83,22 @@ impl DiagnosisSection {
     }
 }
 
+/// A replicate this many times larger than the median magnitude of its experiment's
+/// replicates is refused as a typo (one value of 1e300 among rebound ratios near 0.5 made the
+/// diagnosis report "no missing effect"). Six decades leave room for any real spread of one
+/// measured quantity over its conditions.
+pub const OUTLIER_RATIO: f64 = 1e6;
+
+/// The median of |v| over the finite values (0 when there are none).
+fn median_magnitude<'a>(values: impl Iterator<Item = &'a f64>) -> f64 {
+    let mut m: Vec<f64> = values.filter(|v| v.is_finite()).map(|v| v.abs()).collect();
+    if m.is_empty() {
+        return 0.0;
+    }
+    m.sort_by(f64::total_cmp);
+    m[m.len() / 2]
+}
+
 /// Every error of a decoded `[diagnosis]`: the calibration's ranges, each experiment's rig
 /// (a single-sphere one), its noise SD, and each point's condition (inside the rig's range,
 /// no condition twice), values (finite) and replicate count.
@@ -131,6 +147,7 @@ pub(crate) fn validate(src: &Source<'_>, d: &DiagnosisSection) -> Vec<StudyError
             }
         }
         let condition = kind.conditions[0];
+        let typical = median_magnitude(e.point.iter().flat_map(|p| &p.values));
         for (pi, p) in e.point.iter().enumerate() {
             let at_point = here.key("point").index(pi);
             if let Err(reason) = condition.check(p.condition) {
@@ -152,6 +169,16 @@ pub(crate) fn validate(src: &Source<'_>, d: &DiagnosisSection) -> Vec<StudyError
                 err(
                     at_point.key("values"),
                     format!("{what} point {}: value {v} is not a finite number", pi + 1),
+                );
+            }
+            if let Some(v) = p.values.iter().find(|v| v.abs() > OUTLIER_RATIO * typical) {
+                err(
+                    at_point.key("values"),
+                    format!(
+                        "{what} point {}: value {v:e} is more than {OUTLIER_RATIO:e} times the \
+                         typical size of this experiment's values ({typical}): a typo?",
+                        pi + 1
+                    ),
                 );
             }
             if let Some(r) = p.replicates {

@@ -35,7 +35,6 @@ pub mod plan;
 pub mod problem;
 pub mod pull_off;
 pub(crate) mod source;
-pub mod stl_check;
 pub mod summary;
 pub mod validate;
 

@@ -33,12 +33,12 @@ use crate::plausible::{Plausible, DENSITY_KG_M3, FRICTION, SHEAR_MODULUS_PA};
 use crate::rigs::pod_world::parameters;
 use crate::rigs::pod_world::sections::{Particles, Spheres};
 use crate::rigs::pod_world::Pods;
+use crate::shapes::stl::read_stl;
 use crate::study::error::StudyError;
 use crate::study::file_format::{StudyFile, PAIR_PROPERTIES};
 use crate::study::key_path::KeyPath;
 use crate::study::pull_off::{ReadFile, KIND_PULL_OFF};
 use crate::study::source::Source;
-use crate::study::stl_check::check_stl;
 
 /// The shape-mix fractions must sum to 1 within this (they are proportions of a count,
 /// typed with a few decimals; a larger gap is a mistake, not rounding).
@@ -209,7 +209,8 @@ impl Validator<'_, '_> {
         }
         for (shape, written) in p.stl.entries() {
             let resolved = dir.join(written);
-            if let Err(reason) = check_stl(&resolved) {
+            // The reader itself: a closed surface of finite vertices, as the filling needs.
+            if let Err(reason) = read_stl(&resolved) {
                 self.fail(
                     &at.key("stl").key(shape),
                     format!("unreadable STL '{written}': {reason}"),
