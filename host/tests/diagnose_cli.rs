@@ -101,6 +101,30 @@ fn one_condition_study_is_not_identifiable() {
     );
 }
 
+/// Issue 23: the written study states the noise its replicates were drawn with: `--noise`
+/// overrides the template's `noise_sd` (0.01, 0.1, 1.0), one SD for all or per kind.
+#[test]
+fn synth_writes_the_noise_it_drew_with() {
+    let dir = tempfile::tempdir().unwrap();
+    let noise_sds = |args: &[&str]| -> Vec<f64> {
+        let m = dir.path().join("m.toml");
+        let mut all = vec!["synth", TEMPLATE, "--out", m.to_str().unwrap()];
+        all.extend_from_slice(args);
+        ok(&arachis(&all));
+        let text = std::fs::read_to_string(&m).unwrap();
+        let doc: toml::Value = toml::from_str(&text).unwrap();
+        doc["diagnosis"]["experiment"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|e| e["noise_sd"].as_float().unwrap())
+            .collect()
+    };
+    assert_eq!(noise_sds(&[]), [0.01, 0.1, 1.0]);
+    assert_eq!(noise_sds(&["--noise", "0.02"]), [0.02, 0.02, 0.02]);
+    assert_eq!(noise_sds(&["--noise", "press=0.3"]), [0.01, 0.3, 1.0]);
+}
+
 #[test]
 fn bad_input_is_a_clear_error() {
     let out = arachis(&["fit", TEMPLATE, "--with", "magic"]);

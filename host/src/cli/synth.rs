@@ -98,11 +98,16 @@ pub fn run(args: Args) -> Result<()> {
     let (_, truth) = truths(&model, &series, &study.current_values(), &hidden)
         .context("simulating the truth")?;
     let values = add_noise(&series, &truth, &noise, args.seed, DEFAULT_REPLICATES)?;
+    // The SDs drawn with are what the written study states (`--noise` overrides the study's).
+    let sds = series
+        .iter()
+        .map(|s| noise.sd(&s.experiment, s.noise_sd))
+        .collect::<anyhow::Result<Vec<f64>>>()?;
     let text = format!(
         "# Synthetic measurements written by `arachis synth` (seed {}); the hidden effect is not recorded here.\n{}",
         args.seed,
         study
-            .toml_with_replicates(&values)
+            .toml_with_replicates(&values, Some(&sds))
             .map_err(|e| anyhow!("{}: {e}", args.study.display()))?
     );
     // What is written must load as a measured study.

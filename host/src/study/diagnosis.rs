@@ -202,8 +202,14 @@ impl super::Study {
     /// (the order of [`super::Study::series`]), for `arachis synth`: a `[diagnosis]` study
     /// is written as its section alone (so a template becomes a measured study, byte for
     /// byte what earlier versions wrote); a study with `[[measurements]]` gets their
-    /// `values`, replacing a printed mean. Comments are not kept.
-    pub fn toml_with_replicates(&self, values: &[Vec<Vec<f64>>]) -> Result<String, String> {
+    /// `values`, replacing a printed mean. `noise_sd[s]`, when given, is the SD the replicates
+    /// of diagnosis experiment `s` were drawn with and replaces its `noise_sd`. Comments are
+    /// not kept.
+    pub fn toml_with_replicates(
+        &self,
+        values: &[Vec<Vec<f64>>],
+        noise_sd: Option<&[f64]>,
+    ) -> Result<String, String> {
         let mut out = self.file().clone();
         if out.measurement.is_some() {
             return Err(
@@ -212,10 +218,13 @@ impl super::Study {
         }
         let mut series = values.iter();
         if let Some(d) = &mut out.diagnosis {
-            for e in &mut d.experiment {
+            for (ei, e) in d.experiment.iter_mut().enumerate() {
                 let v = series
                     .next()
                     .ok_or("fewer replicate sets than experiments")?;
+                if let Some(sd) = noise_sd.and_then(|sds| sds.get(ei)) {
+                    e.noise_sd = Some(*sd);
+                }
                 for (p, v) in e.point.iter_mut().zip(v) {
                     p.values = v.clone();
                     p.replicates = None;

@@ -102,7 +102,7 @@ pub fn case_with_truth(
 fn noisy_study(study: &Study, truth: &[Vec<f64>], seed: u64) -> Study {
     let values = add_noise(&study.series(), truth, &NoiseSpec::default(), seed, 4).unwrap();
     Study::from_toml(
-        &study.toml_with_replicates(&values).unwrap(),
+        &study.toml_with_replicates(&values, None).unwrap(),
         Path::new("noisy-study.toml"),
     )
     .unwrap()
