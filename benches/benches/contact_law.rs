@@ -46,7 +46,8 @@ fn kinematics<S: Scalar>() -> ContactKinematics<S> {
     }
 }
 
-fn bench_law<S: Scalar>(g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>) {
+/// The pod–pod pair of the bench bed (DESIGN §8): e 0.335, μs 0.854, μr 0.346.
+fn pod_pair<S: Scalar>() -> PairParams<S> {
     let pod = MaterialSpec {
         youngs_modulus_pa: 8.43e6,
         poisson: 0.386,
@@ -54,8 +55,11 @@ fn bench_law<S: Scalar>(g: &mut criterion::BenchmarkGroup<'_, criterion::measure
     }
     .validate()
     .expect("pod material");
-    let params: PairParams<S> =
-        PairParams::new(&pod, &pod, &PairSpec::hertz_mindlin(0.335, 0.854, 0.346));
+    PairParams::new(&pod, &pod, &PairSpec::hertz_mindlin(0.335, 0.854, 0.346))
+}
+
+fn bench_law<S: Scalar>(g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>) {
+    let params: PairParams<S> = pod_pair();
     let k = kinematics::<S>();
     let start = ContactState {
         delta: Vec3::from_f64([1e-4, -2e-4, 0.0]),
@@ -109,15 +113,7 @@ fn bench_fused<S: Scalar>(g: &mut criterion::BenchmarkGroup<'_, criterion::measu
 where
     S::Fast: Envelope,
 {
-    let pod = MaterialSpec {
-        youngs_modulus_pa: 8.43e6,
-        poisson: 0.386,
-        density_kg_m3: 582.0,
-    }
-    .validate()
-    .expect("pod material");
-    let params: PairParams<S> =
-        PairParams::new(&pod, &pod, &PairSpec::hertz_mindlin(0.335, 0.854, 0.346));
+    let params: PairParams<S> = pod_pair();
     let pair = params.fused.fast();
     let f = |x: f64| S::from_f64(x).to_fast();
     // Centres 7.982 mm apart along (0, 0.6, 0.8): R 4 mm each, overlap 0.018 mm.
@@ -158,15 +154,7 @@ fn fused(c: &mut Criterion) {
 /// [`LANES`] pod–pod contacts of the settled bed: R 4 mm, overlaps near 0.018 mm, normals and
 /// velocities varied (internal units), as the fused law and as one lane batch.
 fn batch_contacts() -> (Vec<FusedContact<f64>>, LaneBatch, FusedPair<f64>) {
-    let pod = MaterialSpec {
-        youngs_modulus_pa: 8.43e6,
-        poisson: 0.386,
-        density_kg_m3: 582.0,
-    }
-    .validate()
-    .expect("pod material");
-    let params: PairParams<f64> =
-        PairParams::new(&pod, &pod, &PairSpec::hertz_mindlin(0.335, 0.854, 0.346));
+    let params: PairParams<f64> = pod_pair();
     let p = params.fused;
     let raw = |x: f64| (x * 4294967296.0).round() as i64;
     let mut batch = LaneBatch::default();
@@ -204,12 +192,7 @@ fn batch_contacts() -> (Vec<FusedContact<f64>>, LaneBatch, FusedPair<f64>) {
         batch.r_j[l] = raw(4.0);
         batch.r_star[l] = raw(2.0);
         batch.m_star[l] = raw(0.078);
-        batch.kn[l] = raw(p.four_thirds_e_star);
-        batch.cn[l] = raw(p.normal_damping);
-        batch.kt[l] = raw(p.eight_g_star);
-        batch.ct[l] = raw(p.tangential_damping);
-        batch.mu[l] = raw(p.friction);
-        batch.mu_r[l] = raw(p.rolling_friction);
+        batch.set_pair(l, &p.map(|x| Fx::from_f64(x).to_fast()));
         contacts.push(c);
     }
     (contacts, batch, p)

@@ -36,7 +36,8 @@ fn test_module_files(dir: &Path) -> BTreeSet<String> {
     let mut after_cfg_test = false;
     for line in source.lines().map(str::trim) {
         if after_cfg_test {
-            if let Some(name) = line.strip_prefix("mod ").and_then(|r| r.strip_suffix(';')) {
+            let declared = line.rsplit_once("mod ").map(|(_, r)| r);
+            if let Some(name) = declared.and_then(|r| r.strip_suffix(';')) {
                 names.insert(format!("{name}.rs"));
             }
         }

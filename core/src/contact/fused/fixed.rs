@@ -392,109 +392,8 @@ pub fn evaluate(
 mod tests {
     use super::*;
     use crate::contact::fused::evaluate as evaluate_f64;
-    use crate::material::MaterialSpec;
+    use crate::contact::fused::random_contacts::{contact, test_pairs, Stream};
     use crate::num::Scalar;
-    use crate::pair::{PairParams, PairSpec};
-
-    /// A deterministic stream of uniform numbers in [0, 1).
-    struct Stream(u64);
-    impl Stream {
-        fn next(&mut self) -> f64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-        fn range(&mut self, lo: f64, hi: f64) -> f64 {
-            lo + (hi - lo) * self.next()
-        }
-        fn log_range(&mut self, lo: f64, hi: f64) -> f64 {
-            libm::exp(self.range(libm::log(lo), libm::log(hi)))
-        }
-        /// A vector with components in ±(a log-uniform scale in [lo, hi]).
-        fn vec_log(&mut self, lo: f64, hi: f64) -> Vec3<f64> {
-            let scale = self.log_range(lo, hi);
-            self.vec(scale)
-        }
-        fn vec(&mut self, scale: f64) -> Vec3<f64> {
-            Vec3::new(
-                self.range(-scale, scale),
-                self.range(-scale, scale),
-                self.range(-scale, scale),
-            )
-        }
-    }
-
-    fn pair(a: MaterialSpec, b: MaterialSpec, e: f64, mu: f64, mu_r: f64) -> FusedPair<f64> {
-        let (a, b) = (a.validate().unwrap(), b.validate().unwrap());
-        PairParams::<f64>::new(&a, &b, &PairSpec::hertz_mindlin(e, mu, mu_r)).fused
-    }
-
-    const POD: MaterialSpec = MaterialSpec {
-        youngs_modulus_pa: 8.43e6,
-        poisson: 0.386,
-        density_kg_m3: 582.0,
-    };
-    const STEEL: MaterialSpec = MaterialSpec {
-        youngs_modulus_pa: 2.05e11,
-        poisson: 0.3,
-        density_kg_m3: 7865.0,
-    };
-
-    /// A random contact inside the envelope, quantised to Q32.32 so that both kernels see the
-    /// same inputs.
-    fn contact(
-        s: &mut Stream,
-        wall: bool,
-        clump: bool,
-        stiff: bool,
-    ) -> (FusedContact<f64>, Vec3<f64>) {
-        let q = |x: f64| FxFast::from_f64(x).to_f64();
-        let r_i = q(s.range(1.0, 10.0));
-        let r_j = q(s.range(1.0, 10.0));
-        let rs = r_i + r_j;
-        // Overlaps from 1e-7 of the reach (onset) to 2 % (a hard impact); 10x smaller on steel.
-        let overlap = s.log_range(1e-7, 2e-2) * rs * if stiff { 0.1 } else { 1.0 };
-        let n = {
-            let v = s.vec(1.0);
-            v.scale(1.0 / v.norm())
-        };
-        let geometry = if wall {
-            Geometry::Wall {
-                normal: n.map(q),
-                overlap: q(overlap),
-            }
-        } else {
-            let d = n.scale(rs - overlap).map(q);
-            Geometry::Spheres {
-                d,
-                d2: d.norm2(),
-                r_j,
-            }
-        };
-        let r_star = if wall { r_i } else { q(r_i * r_j / rs) };
-        let c = FusedContact {
-            geometry,
-            r_i,
-            r_star,
-            m_star: q(s.log_range(0.01, 50.0)),
-            v_centres: s.vec_log(1e-6, 10.0).map(q),
-            spin_i: s.vec_log(1e-6, 1.0).map(q),
-            spin_j: if wall {
-                Vec3::ZERO
-            } else {
-                s.vec_log(1e-6, 1.0).map(q)
-            },
-            offset_i: clump.then(|| s.vec(8.0).map(q)),
-            offset_j: (clump && !wall).then(|| s.vec(8.0).map(q)),
-            dt: q(s.log_range(5e-4, 5e-2)),
-        };
-        // History nearly in the tangent plane, as the law keeps it: projected each step, it
-        // leans out of the plane only by the normal's turn in one step.
-        let delta = s.vec_log(1e-9, 0.05);
-        let delta = delta - n.scale(delta.dot(n) * (1.0 - 1e-3));
-        (c, delta.map(q))
-    }
 
     /// Absolute part of the tolerance on forces (N) and history (mm): a dozen Q32.32 units of
     /// rounding in a chain of products.
@@ -524,11 +423,7 @@ mod tests {
     #[test]
     fn agrees_with_the_f64_law_inside_its_error_budget() {
         let mut s = Stream(0x2545_F491_4F6C_DD1D);
-        let pairs = [
-            (pair(POD, POD, 0.335, 0.854, 0.346), false),
-            (pair(POD, STEEL, 0.339, 0.589, 0.159), false),
-            (pair(STEEL, STEEL, 0.5, 0.3, 0.0), true),
-        ];
+        let pairs = test_pairs();
         let mut inside = 0;
         for k in 0..200_000 {
             let (p, stiff) = pairs[k % 3];

@@ -63,6 +63,8 @@
 //! ```
 
 pub mod fixed;
+#[cfg(test)]
+pub(crate) mod random_contacts;
 
 use crate::num::{Envelope, FxFast, Scalar, Vec3};
 

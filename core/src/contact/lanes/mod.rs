@@ -65,7 +65,9 @@ mod dispatch;
 mod geometry;
 mod law;
 
+use crate::contact::fused::FusedPair;
 pub use crate::num::lanes::{Lanes, Mask, LANES};
+use crate::num::FxFast;
 pub use dispatch::{evaluate, evaluate_portable, evaluate_with, Isa};
 
 /// Radii, R*, lever lengths and clump offsets below 2^LENGTH_BITS mm.
@@ -137,6 +139,18 @@ pub struct LaneBatch {
     pub mu: Lanes,
     /// CDT rolling friction μr.
     pub mu_r: Lanes,
+}
+
+impl LaneBatch {
+    /// Put the fused-law constants of pair `p` into lane `lane`.
+    pub fn set_pair(&mut self, lane: usize, p: &FusedPair<FxFast>) {
+        self.kn[lane] = p.four_thirds_e_star.raw();
+        self.cn[lane] = p.normal_damping.raw();
+        self.kt[lane] = p.eight_g_star.raw();
+        self.ct[lane] = p.tangential_damping.raw();
+        self.mu[lane] = p.friction.raw();
+        self.mu_r[lane] = p.rolling_friction.raw();
+    }
 }
 
 /// The loads of [`LANES`] contacts (raw Q32.32, as [`crate::contact::fused::FusedLoad`]).

@@ -1,10 +1,10 @@
 //! The lane kernel against the f64 law and across its builds.
 
 use super::*;
+use crate::contact::fused::random_contacts::{self, contact, placed, Stream, POD, STEEL};
 use crate::contact::fused::{evaluate as evaluate_f64, FusedContact, FusedPair, Geometry};
 use crate::material::MaterialSpec;
-use crate::num::Vec3;
-use crate::pair::{PairParams, PairSpec};
+use crate::num::{FxFast, Scalar, Vec3};
 
 /// Q32.32 raw of x.
 fn raw(x: f64) -> i64 {
@@ -18,94 +18,9 @@ fn real(x: i64) -> f64 {
     x as f64 / 4294967296.0
 }
 
-/// A deterministic stream of uniform numbers in [0, 1).
-struct Stream(u64);
-impl Stream {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-    fn log_range(&mut self, lo: f64, hi: f64) -> f64 {
-        libm::exp(self.range(libm::log(lo), libm::log(hi)))
-    }
-    fn vec(&mut self, scale: f64) -> Vec3<f64> {
-        Vec3::new(
-            self.range(-scale, scale),
-            self.range(-scale, scale),
-            self.range(-scale, scale),
-        )
-    }
-    fn vec_log(&mut self, lo: f64, hi: f64) -> Vec3<f64> {
-        let scale = self.log_range(lo, hi);
-        self.vec(scale)
-    }
-}
-
+/// The pair's constants, quantised to Q32.32 as the lane batch holds them.
 fn pair(a: MaterialSpec, b: MaterialSpec, e: f64, mu: f64, mu_r: f64) -> FusedPair<f64> {
-    let (a, b) = (a.validate().unwrap(), b.validate().unwrap());
-    PairParams::<f64>::new(&a, &b, &PairSpec::hertz_mindlin(e, mu, mu_r))
-        .fused
-        .map(q)
-}
-
-const POD: MaterialSpec = MaterialSpec {
-    youngs_modulus_pa: 8.43e6,
-    poisson: 0.386,
-    density_kg_m3: 582.0,
-};
-const STEEL: MaterialSpec = MaterialSpec {
-    youngs_modulus_pa: 2.05e11,
-    poisson: 0.3,
-    density_kg_m3: 7865.0,
-};
-
-/// A random contact of the kind the bed and the pods make, on Q32.32 values.
-fn contact(s: &mut Stream, wall: bool, clump: bool, stiff: bool) -> (FusedContact<f64>, Vec3<f64>) {
-    let r_i = q(s.range(1.0, 10.0));
-    let r_j = q(s.range(1.0, 10.0));
-    let rs = r_i + r_j;
-    let overlap = s.log_range(1e-7, 2e-2) * rs * if stiff { 0.1 } else { 1.0 };
-    let n = {
-        let v = s.vec(1.0);
-        v.scale(1.0 / v.norm())
-    };
-    let geometry = if wall {
-        Geometry::Wall {
-            normal: n.map(q),
-            overlap: q(overlap),
-        }
-    } else {
-        let d = n.scale(rs - overlap).map(q);
-        Geometry::Spheres {
-            d,
-            d2: d.norm2(),
-            r_j,
-        }
-    };
-    let c = FusedContact {
-        geometry,
-        r_i,
-        r_star: if wall { r_i } else { q(r_i * r_j / rs) },
-        m_star: q(s.log_range(0.01, 50.0)),
-        v_centres: s.vec_log(1e-6, 10.0).map(q),
-        spin_i: s.vec_log(1e-6, 1.0).map(q),
-        spin_j: if wall {
-            Vec3::ZERO
-        } else {
-            s.vec_log(1e-6, 1.0).map(q)
-        },
-        offset_i: clump.then(|| s.vec(8.0).map(q)),
-        offset_j: (clump && !wall).then(|| s.vec(8.0).map(q)),
-        dt: q(s.log_range(5e-4, 5e-2)),
-    };
-    let delta = s.vec_log(1e-9, 0.05);
-    let delta = delta - n.scale(delta.dot(n) * (1.0 - 1e-3));
-    (c, delta.map(q))
+    random_contacts::pair(a, b, e, mu, mu_r).map(q)
 }
 
 /// Put contact `c` of pair `p` with history `delta` into lane `l` of `b`.
@@ -144,12 +59,7 @@ fn load_lane(
     b.clump_i[l] = c.offset_i.is_some();
     b.clump_j[l] = c.offset_j.is_some();
     set3(&mut b.delta, delta);
-    b.kn[l] = raw(p.four_thirds_e_star);
-    b.cn[l] = raw(p.normal_damping);
-    b.kt[l] = raw(p.eight_g_star);
-    b.ct[l] = raw(p.tangential_damping);
-    b.mu[l] = raw(p.friction);
-    b.mu_r[l] = raw(p.rolling_friction);
+    b.set_pair(l, &p.map(FxFast::from_f64));
 }
 
 fn lane3(v: &[Lanes; 3], l: usize) -> Vec3<f64> {
@@ -177,11 +87,7 @@ const LEVER_MM: f64 = 24.0;
 #[test]
 fn agrees_with_the_f64_law_inside_its_error_budget() {
     let mut s = Stream(0x2545_F491_4F6C_DD1D);
-    let pairs = [
-        (pair(POD, POD, 0.335, 0.854, 0.346), false),
-        (pair(POD, STEEL, 0.339, 0.589, 0.159), false),
-        (pair(STEEL, STEEL, 0.5, 0.3, 0.0), true),
-    ];
+    let pairs = random_contacts::test_pairs().map(|(p, stiff)| (p.map(q), stiff));
     let (mut inside, mut both) = (0, 0);
     for batch in 0..200_000 / LANES {
         let mut b = LaneBatch::default();
@@ -307,24 +213,8 @@ fn extreme_contact(s: &mut Stream, wall: bool, clump: bool) -> (FusedContact<f64
     let r_i = q(s.range(0.01, 31.0));
     let r_j = q(s.range(0.01, 31.0));
     let rs = r_i + r_j;
-    let n = {
-        let v = s.vec(1.0);
-        v.scale(1.0 / v.norm())
-    };
     let overlap = s.range(1e-9, 0.49) * if wall { r_i } else { rs };
-    let geometry = if wall {
-        Geometry::Wall {
-            normal: n.map(q),
-            overlap: q(overlap),
-        }
-    } else {
-        let d = n.scale(rs - overlap).map(q);
-        Geometry::Spheres {
-            d,
-            d2: d.norm2(),
-            r_j,
-        }
-    };
+    let (geometry, _) = placed(s, r_i, r_j, overlap, wall);
     let c = FusedContact {
         geometry,
         r_i,
