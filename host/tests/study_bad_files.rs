@@ -362,3 +362,18 @@ fn implausible_values_are_refused_at_their_keys() {
         check(e, name, line_of(name, text, 1), "outside the plausible");
     }
 }
+
+/// Issue 23: a `[parameters]` range is held to the same plausible range as the value it
+/// varies (friction up to 1e300 was accepted).
+#[test]
+fn an_implausible_parameter_range_is_rejected() {
+    let name = "range_implausible.toml";
+    let errors = rejected(name);
+    let e = at(&errors, "parameters.\"pod-pod.static_friction\".high");
+    check(
+        e,
+        name,
+        line_of(name, "high = 1e300", 1),
+        "outside the plausible 0 to 10",
+    );
+}

@@ -1,5 +1,6 @@
 //! Checks of `[parameters."<name>"]` ranges: registry names, owners, limits, order.
 
+use crate::plausible::{Plausible, DENSITY_KG_M3, FRICTION, SHEAR_MODULUS_PA};
 use std::collections::BTreeMap;
 
 use super::Validator;
@@ -70,7 +71,14 @@ impl Validator<'_, '_> {
                 );
             }
             let limits = range.limits(spec);
+            let plausible = plausible_range(spec.sets.property);
             for (key, value) in [("low", range.low), ("high", range.high)] {
+                if let (Ok(()), Some(p)) = (limits.check(value), plausible) {
+                    // Admitted by the model: is it believable (issue 23)?
+                    if let Err(reason) = p.check(value) {
+                        self.fail(&k.key(key), reason);
+                    }
+                }
                 if let Err(mut reason) = limits.check(value) {
                     if limits == Limits::Poisson && (0.5..1.0).contains(&value) {
                         reason.push_str(
@@ -147,5 +155,16 @@ impl Validator<'_, '_> {
                 );
             }
         }
+    }
+}
+
+/// The plausible range of a pod-world property varied by `[parameters]` (the same ranges as
+/// the values in `[materials]` and `[pairs]`), if it has one beyond its limits.
+fn plausible_range(property: &str) -> Option<Plausible> {
+    match property {
+        "shear_modulus_pa" => Some(SHEAR_MODULUS_PA),
+        "density_kg_m3" => Some(DENSITY_KG_M3),
+        "static_friction" | "rolling_friction" => Some(FRICTION),
+        _ => None,
     }
 }
