@@ -1,8 +1,8 @@
 //! Issue 23: every bad input of `testdata/bad-inputs/cases.toml`, and every bad study of
 //! `testdata/bad-studies/`, run through the command line: the command exits with status 2
 //! before any simulation, says each expected text (the input's file, line, key or option, and
-//! the fault) in a message a person can read (no panic, no debug dump, long values cut), and
-//! leaves no file behind in the folder it was given.
+//! the fault) in a message a person can read (no panic, no debug dump, long values cut, no
+//! line twice), and leaves no file behind in the folder it was given.
 
 mod cli_support;
 use cli_support::{arachis_at_root, REPO_ROOT};

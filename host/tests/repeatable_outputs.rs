@@ -3,7 +3,9 @@
 //! test compares. Each command below runs twice into two fresh folders, and every file of the
 //! first run must equal its namesake of the second, byte for byte. (The calibrations, which
 //! take minutes, have their own replay tests: `calibrate_committed_run.rs` and
-//! `plant_calibrate_cli.rs` against committed bytes; `harvest.rs` runs its report twice.)
+//! `plant_calibrate_cli.rs` against committed bytes; `harvest.rs` runs its report twice. The
+//! other commands write no file: `lab` without `--svg`, `doe analyze`/`optimize`, `study`,
+//! `diagnose`, `plant` print to standard output.)
 
 mod cli_support;
 use cli_support::{arachis_at_root, REPO_ROOT};
@@ -103,6 +105,23 @@ fn every_file_writing_command_writes_the_same_bytes_twice() {
             "--no-loco",
             "--out",
             "{OUT}/fit.toml",
+            "--plots",
+            "{OUT}/fit-plots",
+        ],
+        vec![
+            "lab",
+            "repose",
+            "testdata/repose/synthetic_pile_31.06deg.png",
+            "--svg",
+            "{OUT}/contour.svg",
+        ],
+        vec![
+            "simulate",
+            "--study",
+            "testdata/peanut-pods-saline/study.toml",
+            "incline_slide",
+            "--vtk",
+            "{OUT}/incline-vtk",
         ],
         vec!["compare", measured, "--plots", "{OUT}/plots"],
         vec![
