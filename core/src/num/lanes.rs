@@ -151,12 +151,6 @@ pub(crate) fn take_wide_operands() -> u64 {
     WIDE_OPERANDS.with(|w| w.replace(0))
 }
 
-/// a·b of two narrow values (|a|, |b| < 2^31), rounded and shifted right by s.
-#[inline(always)]
-pub fn mul_shr(a: i64, b: i64, s: i64) -> i64 {
-    shr_round(mul32(a, b), s)
-}
-
 /// (a·b − c·d) of narrow values, rounded and shifted right by s.
 #[inline(always)]
 pub fn mul_sub_shr(a: i64, b: i64, c: i64, d: i64, s: i64) -> i64 {
@@ -377,19 +371,6 @@ impl Soft {
         self.add(&b.neg())
     }
 
-    /// a·2^k.
-    #[inline(always)]
-    pub fn mul_pow2(&self, k: i64) -> Soft {
-        Soft {
-            m: self.m,
-            e: lanes!(|l| if self.m[l] == 0 {
-                ZERO_EXP
-            } else {
-                self.e[l] + k
-            }),
-        }
-    }
-
     /// a·2^k with k per lane.
     #[inline(always)]
     pub fn mul_pow_lanes(&self, k: &Lanes) -> Soft {
@@ -450,12 +431,6 @@ pub fn any(m: &Mask) -> bool {
         a |= m[l];
     }
     a
-}
-
-/// The per-lane ‘and’ of two masks.
-#[inline(always)]
-pub fn and(a: &Mask, b: &Mask) -> Mask {
-    mask!(|l| a[l] & b[l])
 }
 
 #[cfg(test)]
