@@ -389,3 +389,42 @@ fn missing_keys_and_bad_integers_are_named() {
         "unknown value 'cubic', expected one of 'linear'",
     );
 }
+
+/// Issue 23: a diagnosis replicate far beyond its experiment's typical size is refused as a
+/// typo, but an experiment whose values are mostly zero has no typical size to judge by.
+#[test]
+fn diagnosis_replicates_far_beyond_their_experiment_are_refused() {
+    let measured = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../testdata/diagnosis-tutorial/measured.toml"),
+    )
+    .unwrap();
+    let at = Path::new("measured.toml");
+    let first = measured.find("values = [").unwrap();
+    let end = first + measured[first..].find(']').unwrap() + 1;
+    let with_values = |v: &str| format!("{}values = [{v}]{}", &measured[..first], &measured[end..]);
+    let err = Study::from_toml(&with_values("1e300, 0.5, 0.5, 0.5"), at)
+        .expect_err("a replicate of 1e300 was accepted")
+        .to_string();
+    assert!(err.contains("a typo?"), "{err}");
+    // One replicate of 1e5 among rebound ratios near 0.5 is 2e5 times their median: accepted.
+    assert!(Study::from_toml(&with_values("1e5, 0.5, 0.5, 0.5"), at).is_ok());
+    // Every rebound value zero but one: no typical size, nothing refused.
+    let mut zeros = measured.clone();
+    let rebound_end = zeros.find("kind = \"press\"").unwrap();
+    let mut cleared = String::new();
+    for line in zeros[..rebound_end].lines() {
+        if line.starts_with("values = [") {
+            cleared.push_str("values = [0.0, 0.0, 0.0, 0.0]\n");
+        } else {
+            cleared.push_str(line);
+            cleared.push('\n');
+        }
+    }
+    zeros.replace_range(..rebound_end, &cleared);
+    let zeros = zeros.replacen(
+        "values = [0.0, 0.0, 0.0, 0.0]",
+        "values = [1e-9, 0.0, 0.0, 0.0]",
+        1,
+    );
+    assert!(Study::from_toml(&zeros, at).is_ok());
+}

@@ -171,7 +171,8 @@ pub(crate) fn validate(src: &Source<'_>, d: &DiagnosisSection) -> Vec<StudyError
                     format!("{what} point {}: value {v} is not a finite number", pi + 1),
                 );
             }
-            if let Some(v) = p.values.iter().find(|v| v.abs() > OUTLIER_RATIO * typical) {
+            let outlier = |v: &&f64| typical > 0.0 && v.abs() > OUTLIER_RATIO * typical;
+            if let Some(v) = p.values.iter().find(outlier) {
                 err(
                     at_point.key("values"),
                     format!(
