@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use arachis::nearest_name::edit_distance;
+use arachis::plausible::{FRICTION, SHEAR_MODULUS_PA};
 use arachis::study::parameters::REGISTRY;
 use arachis::study::Study;
 use proptest::prelude::*;
@@ -41,7 +42,8 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
 
     /// Any range on any registry parameter: no panic, and the study is accepted exactly
-    /// when low < high and both bounds are within the parameter's limits.
+    /// when low < high and both bounds are within the parameter's limits and within the
+    /// plausible range of the property it varies (issue 23).
     #[test]
     fn random_ranges_never_panic_and_are_judged_correctly(
         index in 0..REGISTRY.len(),
@@ -64,7 +66,16 @@ proptest! {
             "[pairs.\"pod-pod\"]\nrestitution = 0.335\nstatic_friction = 0.854\nrolling_friction = 0.346\n",
         );
         let result = Study::from_toml(&text, &valid_path());
-        let valid = low < high && spec.limits.check(low).is_ok() && spec.limits.check(high).is_ok();
+        let plausible = |x: f64| match spec.sets.property {
+            "static_friction" | "rolling_friction" => (FRICTION.low..=FRICTION.high).contains(&x),
+            "shear_modulus_pa" => (SHEAR_MODULUS_PA.low..=SHEAR_MODULUS_PA.high).contains(&x),
+            _ => true,
+        };
+        let valid = low < high
+            && spec.limits.check(low).is_ok()
+            && spec.limits.check(high).is_ok()
+            && plausible(low)
+            && plausible(high);
         match result {
             Ok(study) => {
                 prop_assert!(valid, "accepted {} {low} … {high}", spec.name);
