@@ -73,6 +73,18 @@ pub const PLANT_ORGAN_MM: Plausible = Plausible {
              room for any field crop",
 };
 
+/// The plausible range of a material or pair property by its study-file key, if it has one
+/// beyond its model limits: the same range for a value in `[materials]` or `[pairs]` and for
+/// a `[parameters]` range that varies it.
+pub fn for_property(property: &str) -> Option<Plausible> {
+    match property {
+        "shear_modulus_pa" => Some(SHEAR_MODULUS_PA),
+        "density_kg_m3" => Some(DENSITY_KG_M3),
+        "static_friction" | "rolling_friction" => Some(FRICTION),
+        _ => None,
+    }
+}
+
 /// Set by `--allow-extreme` for the whole process.
 static ALLOW_EXTREME: AtomicBool = AtomicBool::new(false);
 

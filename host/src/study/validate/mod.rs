@@ -29,7 +29,7 @@ use crate::io::file_name::check_name_component;
 use crate::limits::Limits;
 use crate::nearest_name::nearest_name;
 use crate::plant::topology::BondSet;
-use crate::plausible::{Plausible, DENSITY_KG_M3, FRICTION, SHEAR_MODULUS_PA};
+use crate::plausible::{Plausible, DENSITY_KG_M3, SHEAR_MODULUS_PA};
 use crate::rigs::pod_world::parameters;
 use crate::rigs::pod_world::sections::{Particles, Spheres};
 use crate::rigs::pod_world::Pods;
@@ -310,12 +310,11 @@ impl Validator<'_, '_> {
                 let varied = registered.is_some_and(|p| {
                     file.parameters.contains_key(p.name) || intended.contains(p.name)
                 });
-                let friction = property != "restitution";
                 match (pair.property(property), registered) {
-                    (Some(value), Some(spec)) if friction => {
-                        self.plausible(&pk, value, spec.limits, FRICTION)
-                    }
-                    (Some(value), Some(spec)) => self.limit(&pk, value, spec.limits),
+                    (Some(value), Some(spec)) => match crate::plausible::for_property(property) {
+                        Some(range) => self.plausible(&pk, value, spec.limits, range),
+                        None => self.limit(&pk, value, spec.limits),
+                    },
                     (Some(value), None) => self.limit(&pk, value, pair_limits(property)),
                     (None, _) if varied => {}
                     (None, Some(spec)) => self.fail(

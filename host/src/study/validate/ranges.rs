@@ -1,6 +1,5 @@
 //! Checks of `[parameters."<name>"]` ranges: registry names, owners, limits, order.
 
-use crate::plausible::{Plausible, DENSITY_KG_M3, FRICTION, SHEAR_MODULUS_PA};
 use std::collections::BTreeMap;
 
 use super::Validator;
@@ -71,7 +70,7 @@ impl Validator<'_, '_> {
                 );
             }
             let limits = range.limits(spec);
-            let plausible = plausible_range(spec.sets.property);
+            let plausible = crate::plausible::for_property(spec.sets.property);
             for (key, value) in [("low", range.low), ("high", range.high)] {
                 if let (Ok(()), Some(p)) = (limits.check(value), plausible) {
                     // Admitted by the model: is it believable (issue 23)?
@@ -155,16 +154,5 @@ impl Validator<'_, '_> {
                 );
             }
         }
-    }
-}
-
-/// The plausible range of a pod-world property varied by `[parameters]` (the same ranges as
-/// the values in `[materials]` and `[pairs]`), if it has one beyond its limits.
-fn plausible_range(property: &str) -> Option<Plausible> {
-    match property {
-        "shear_modulus_pa" => Some(SHEAR_MODULUS_PA),
-        "density_kg_m3" => Some(DENSITY_KG_M3),
-        "static_friction" | "rolling_friction" => Some(FRICTION),
-        _ => None,
     }
 }
