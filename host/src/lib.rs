@@ -7,6 +7,7 @@
 pub mod arena;
 pub mod calibration;
 pub mod cli;
+pub mod cluster;
 pub mod count_limits;
 pub mod diagnose;
 pub mod doe;

@@ -93,6 +93,11 @@ pub fn allow_extreme(on: bool) {
     ALLOW_EXTREME.store(on, Ordering::Relaxed);
 }
 
+/// Whether `--allow-extreme` is on (a cluster task carries it to its worker).
+pub fn extreme_allowed() -> bool {
+    ALLOW_EXTREME.load(Ordering::Relaxed)
+}
+
 impl Plausible {
     /// `Ok` inside the range; else the reason, naming the range and why. With
     /// `--allow-extreme` a value outside is accepted and the reason printed as a warning.

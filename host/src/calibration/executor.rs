@@ -5,7 +5,10 @@
 //! interrupted calibration resumes where it stopped.
 //!
 //! This is the one place that spreads rig runs over cores: a setting of how each run is
-//! executed (threads per run, say) belongs here and nowhere else.
+//! executed (threads per run, say) belongs here and nowhere else. An executor may instead
+//! hand a stage's missing runs to a [`Remote`] backend (a Slurm cluster, `crate::cluster`),
+//! which simulates them elsewhere and stores them in the same run cache; the stage then
+//! replays them from the cache, so the numbers cannot depend on where a run ran.
 
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -63,9 +66,44 @@ pub fn replicate_indices(rows: &[Vec<f64>]) -> Vec<u32> {
         .collect()
 }
 
+/// One run a stage hands to a [`Remote`] backend: what a worker elsewhere needs to
+/// simulate it, besides the recipe of the rig (which the backend holds).
+#[derive(Debug, Clone, Copy)]
+pub struct RemoteRun<'a> {
+    /// The stage.
+    pub stage: &'static str,
+    /// 1-based run number within the stage.
+    pub run: usize,
+    /// Hash of the run's specification (its file in the run cache).
+    pub spec_hash: SpecHash,
+    /// The specification itself.
+    pub spec: &'a serde_json::Value,
+    /// The rig's [`Rig::id`](super::Rig::id), stored with the run.
+    pub rig_id: &'a str,
+    /// The study experiment whose rig runs it ([`Objective::experiment`]).
+    pub experiment: &'a str,
+    /// The response the stage reads ([`Objective::quantity`]).
+    pub quantity: &'a str,
+    /// The run itself.
+    pub request: RunRequest<'a>,
+}
+
+/// Somewhere else to simulate runs: it returns once every run it was given is stored in
+/// `cache` (as [`RunCache::store`] writes it), or with the error that stopped it.
+pub trait Remote: Send + Sync {
+    /// Simulates `runs` elsewhere, storing each in `cache`; `bar` counts finished runs.
+    fn run_all(
+        &self,
+        runs: &[RemoteRun<'_>],
+        cache: &RunCache,
+        bar: &indicatif::ProgressBar,
+    ) -> Result<(), CalibrateError>;
+}
+
 /// Runs batches of runs; counts what it simulated and replayed.
 pub struct Executor {
     cache: Option<RunCache>,
+    remote: Option<Box<dyn Remote>>,
     pool: rayon::ThreadPool,
     progress: Progress,
     simulated: AtomicUsize,
@@ -99,11 +137,24 @@ impl Executor {
         let cache = cache_dir.map(RunCache::open).transpose()?;
         Ok(Self {
             cache,
+            remote: None,
             pool,
             progress,
             simulated: AtomicUsize::new(0),
             replayed: AtomicUsize::new(0),
         })
+    }
+
+    /// This executor with its stages' missing runs simulated by `remote` instead of on the
+    /// local pool; refused without a run cache, where the remote runs are stored.
+    pub fn with_remote(mut self, remote: Box<dyn Remote>) -> Result<Self, CalibrateError> {
+        if self.cache.is_none() {
+            return Err(CalibrateError::Plan(
+                "a remote executor needs a run cache to collect its runs in".into(),
+            ));
+        }
+        self.remote = Some(remote);
+        Ok(self)
     }
 
     /// Runs `work` on the pool (the desirability search uses it too).
@@ -194,6 +245,45 @@ impl Executor {
         let replayed = runs.len() - missing.len();
         self.replayed.fetch_add(replayed, Ordering::Relaxed);
         let bar = self.progress.stage(stage, runs.len(), replayed);
+        if let (Some(remote), Some(cache)) = (&self.remote, &self.cache) {
+            let remote_runs: Vec<RemoteRun<'_>> = missing
+                .iter()
+                .map(|&i| RemoteRun {
+                    stage,
+                    run: i + 1,
+                    spec_hash: hashes[i],
+                    spec: &specs[i].1,
+                    rig_id: &rig_id,
+                    experiment: &objective.experiment,
+                    quantity: &objective.quantity,
+                    request: RunRequest {
+                        values: &specs[i].0,
+                        condition: &objective.condition,
+                        replicate: runs[i].replicate,
+                    },
+                })
+                .collect();
+            remote.run_all(&remote_runs, cache, &bar)?;
+            for &i in &missing {
+                results[i] = cache.load(&specs[i].1, hashes[i], &rig_id, &objective.quantity);
+                if results[i].is_none() {
+                    return Err(CalibrateError::Simulation {
+                        stage,
+                        run: i + 1,
+                        hash: hashes[i].to_string(),
+                        reason: format!(
+                            "the remote executor finished without a valid stored run {}",
+                            cache.path(hashes[i]).display()
+                        ),
+                    });
+                }
+            }
+            self.simulated.fetch_add(missing.len(), Ordering::Relaxed);
+        }
+        let missing: Vec<usize> = missing
+            .into_iter()
+            .filter(|&i| results[i].is_none())
+            .collect();
         // The runs of a stage share the cores: each steps on its share of the threads.
         let in_flight = self.pool.current_num_threads().min(missing.len()).max(1);
         let threads_per_run = (crate::stepping::default_threads() / in_flight).max(1);

@@ -92,6 +92,11 @@ impl RunCache {
         })
     }
 
+    /// The folder.
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
     /// The file of `hash`.
     pub fn path(&self, hash: SpecHash) -> PathBuf {
         self.dir.join(format!("{hash}.json"))

@@ -11,29 +11,19 @@
 //! writes seed 001's `plant-calibration.json` for one release.
 
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use anyhow::{bail, ensure, Context};
-use clap::ValueEnum;
 
-use crate::calibration::{calibrate, Executor, Outcome, Problem, Progress, Rig};
+use crate::calibration::{calibrate, Executor, Outcome, Problem, Progress};
+use crate::cluster::{ClusterArgs, ExecutorKind, RigRecipe, SlurmExecutor};
 use crate::report::{pull_off, write_calibration, Provenance};
-use crate::rigs::kind::RigOptions;
-use crate::rigs::pod_bench::PodBenchRig;
-use crate::rigs::pod_world::{Experiment, ModeName};
+use crate::rigs::pod_world::ModeName;
 use crate::rigs::pull_off::PullOffRig;
-use crate::rigs::repose_surrogate::{Seed000Surrogate, SurrogateRig};
 use crate::study::Study;
 
-/// Which simulator answers the runs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum SimulatorChoice {
-    /// The study's DEM rig.
-    Dem,
-    /// Seed 000's closed-form surrogate of the repose rig: a test stand-in, NOT a DEM
-    /// simulation.
-    Surrogate,
-}
+/// Which simulator answers the runs (the name the command line has known it by).
+pub use crate::cluster::Simulator as SimulatorChoice;
 
 /// Arguments of `arachis calibrate`.
 #[derive(Debug, clap::Args)]
@@ -72,6 +62,9 @@ pub struct Args {
     /// calibration part-way (milliseconds).
     #[arg(long, hide = true, default_value_t = 0)]
     pub surrogate_delay_ms: u64,
+    /// Where the simulations run (this machine or a Slurm cluster).
+    #[command(flatten)]
+    pub cluster: ClusterArgs,
 }
 
 impl Args {
@@ -86,12 +79,32 @@ impl Args {
         }
     }
 
-    fn executor(&self, out: &Path) -> anyhow::Result<Executor> {
-        Ok(Executor::new(
+    /// The recipe of this command's rigs.
+    fn recipe(&self, mode: Option<ModeName>) -> anyhow::Result<RigRecipe> {
+        let mut recipe = RigRecipe::new(&self.study, self.simulator, mode)
+            .with_context(|| format!("{}: cannot make the path absolute", self.study.display()))?;
+        recipe.surrogate_delay_ms = self.surrogate_delay_ms;
+        Ok(recipe)
+    }
+
+    fn executor(&self, out: &Path, recipe: RigRecipe) -> anyhow::Result<Executor> {
+        let local = Executor::new(
             self.jobs.map(|j| j as usize),
             Some(&out.join(crate::calibration::RUNS_DIR)),
             Progress::new(self.quiet),
-        )?)
+        )?;
+        Ok(match self.cluster.executor {
+            ExecutorKind::Local => local,
+            ExecutorKind::Slurm => {
+                let slurm = SlurmExecutor::new(
+                    recipe,
+                    &self.cluster,
+                    &out.join(crate::cluster::SLURM_DIR),
+                    self.quiet,
+                )?;
+                local.with_remote(Box::new(slurm))?
+            }
+        })
     }
 }
 
@@ -129,40 +142,6 @@ fn mode(args: &Args, study: &Study) -> anyhow::Result<Option<(String, ModeName)>
     Ok(Some((name, parsed)))
 }
 
-/// The rig of `experiment`, or the surrogate standing in for the repose rig.
-fn rig<'a>(
-    args: &Args,
-    study: &'a Study,
-    experiment: &str,
-    mode: Option<ModeName>,
-) -> anyhow::Result<Box<dyn Rig + 'a>> {
-    if args.simulator == SimulatorChoice::Dem {
-        let options = RigOptions {
-            mode,
-            ..RigOptions::default()
-        };
-        return Ok(study.rig(experiment, &options)?);
-    }
-    let world = study
-        .pod_world()
-        .filter(|_| experiment == Experiment::Repose.name())
-        .with_context(|| {
-            format!(
-                "{}: the surrogate stands in for seed 000's repose runs only, not {experiment}",
-                args.study.display()
-            )
-        })?;
-    Ok(Box::new(SurrogateRig {
-        pod: PodBenchRig::new(
-            world,
-            crate::rigs::repose_cylinder::TEST,
-            mode.unwrap_or(ModeName::Quick),
-        ),
-        surrogate: Seed000Surrogate::default(),
-        delay: Duration::from_millis(args.surrogate_delay_ms),
-    }))
-}
-
 /// Calibrates `study` as `args` say, writes its report and prints its summary.
 pub fn calibrate_study(args: &Args, study: &Study) -> anyhow::Result<()> {
     let mode = mode(args, study)?;
@@ -173,9 +152,10 @@ pub fn calibrate_study(args: &Args, study: &Study) -> anyhow::Result<()> {
         );
     };
     let modal = mode.as_ref().map(|(_, m)| *m);
-    let target_rig = rig(args, study, &target.experiment, modal)?;
+    let recipe = args.recipe(modal)?;
+    let target_rig = recipe.build(study, &target.experiment)?;
     let other_rig = (validation.experiment != target.experiment)
-        .then(|| rig(args, study, &validation.experiment, modal))
+        .then(|| recipe.build(study, &validation.experiment))
         .transpose()?;
     let problem = study
         .problem(
@@ -191,7 +171,7 @@ pub fn calibrate_study(args: &Args, study: &Study) -> anyhow::Result<()> {
         })
     });
     let started = Instant::now();
-    let executor = args.executor(&out)?;
+    let executor = args.executor(&out, recipe)?;
     let outcome = run_problem(args, &problem, &executor)?;
     if let Some(base) = study.pull_off_setup() {
         let rig = PullOffRig { base };

@@ -17,6 +17,7 @@ pub mod plant;
 pub mod plant_calibrate;
 pub mod pour;
 pub mod pulloff;
+pub mod run;
 pub mod simulate;
 pub mod study;
 pub mod synth;
@@ -68,6 +69,9 @@ pub enum Command {
     /// Calibrate any study end to end: screen, steepest ascent, response surface, optimise,
     /// validate.
     Calibrate(calibrate::Args),
+    /// Simulate one run of a campaign from its task file into the run cache (what each
+    /// Slurm array task runs).
+    Run(run::Args),
     /// Alias (this release only) of `calibrate` on seed 001's built-in pull-off study.
     PlantCalibrate(plant_calibrate::Args),
     /// Generate a plant from its topology and print its parts and bond-set counts.
@@ -99,6 +103,7 @@ impl Cli {
             Command::Synth(args) => synth::run(args),
             Command::Simulate(args) => simulate::run(args),
             Command::Calibrate(args) => calibrate::run(args),
+            Command::Run(args) => run::run(args),
             Command::PlantCalibrate(args) => plant_calibrate::run(args),
             Command::Harvest(args) => harvest::run(args),
             Command::Plant(args) => plant::run(args),

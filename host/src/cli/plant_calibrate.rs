@@ -91,6 +91,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         strict: true,
         simulator: SimulatorChoice::Dem,
         surrogate_delay_ms: 0,
+        cluster: crate::cluster::ClusterArgs::default(),
     };
     let verdict = calibrate_study(&calibrate, &study);
     let path = args.out.join(JSON_FILE);

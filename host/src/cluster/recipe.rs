@@ -1,0 +1,115 @@
+//! How to build a campaign's rig anywhere: the study file, the simulator and the run mode,
+//! the same on the machine that plans the campaign and on every cluster node that runs a
+//! piece of it. A [`RigRecipe`] is what a worker task carries instead of the rig itself.
+//!
+//! ```no_run
+//! use arachis::cluster::{RigRecipe, Simulator};
+//! use arachis::study::Study;
+//! let recipe = RigRecipe::new("testdata/peanut-pods-saline/study.toml".as_ref(),
+//!                             Simulator::Surrogate, None)?;
+//! let study = Study::load(&recipe.study)?;
+//! let rig = recipe.build(&study, "repose")?;
+//! # Ok::<(), anyhow::Error>(())
+//! ```
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use serde::{Deserialize, Serialize};
+
+use crate::calibration::{Rig, RigError};
+use crate::rigs::kind::RigOptions;
+use crate::rigs::pod_bench::PodBenchRig;
+use crate::rigs::pod_world::{Experiment, ModeName};
+use crate::rigs::repose_surrogate::{Seed000Surrogate, SurrogateRig};
+use crate::study::Study;
+
+/// Which simulator answers a campaign's runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Simulator {
+    /// The study's DEM rig.
+    Dem,
+    /// Seed 000's closed-form surrogate of the repose rig: a test stand-in, NOT a DEM
+    /// simulation.
+    Surrogate,
+}
+
+/// Everything besides a run's values that decides which rig simulates it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RigRecipe {
+    /// The study file, as an absolute path (workers may start in another folder).
+    pub study: PathBuf,
+    /// The simulator.
+    pub simulator: Simulator,
+    /// The run mode of a pod rig (`quick`, `full`), if the study has modes.
+    pub mode: Option<String>,
+    /// Whether the study was accepted with values outside their plausible ranges
+    /// (`--allow-extreme`); the worker must accept it alike.
+    #[serde(default)]
+    pub allow_extreme: bool,
+    /// Test hook: time each surrogate run sleeps, ms (0 in real use).
+    #[serde(default)]
+    pub surrogate_delay_ms: u64,
+}
+
+impl RigRecipe {
+    /// The recipe of `study` (made absolute), `simulator` and `mode`.
+    pub fn new(
+        study: &Path,
+        simulator: Simulator,
+        mode: Option<ModeName>,
+    ) -> std::io::Result<Self> {
+        Ok(Self {
+            study: std::path::absolute(study)?,
+            simulator,
+            mode: mode.map(|m| m.as_str().to_owned()),
+            allow_extreme: crate::plausible::extreme_allowed(),
+            surrogate_delay_ms: 0,
+        })
+    }
+
+    /// The run mode, parsed.
+    fn mode(&self) -> Result<Option<ModeName>, RigError> {
+        self.mode
+            .as_deref()
+            .map(|m| m.parse().map_err(|e| RigError(format!("mode '{m}': {e}"))))
+            .transpose()
+    }
+
+    /// The rig of `experiment` in `study` (which must be the recipe's study, loaded), or
+    /// the surrogate standing in for the repose rig.
+    pub fn build<'a>(
+        &self,
+        study: &'a Study,
+        experiment: &str,
+    ) -> Result<Box<dyn Rig + 'a>, RigError> {
+        let mode = self.mode()?;
+        if self.simulator == Simulator::Dem {
+            let options = RigOptions {
+                mode,
+                ..RigOptions::default()
+            };
+            return study.rig(experiment, &options);
+        }
+        let world = study
+            .pod_world()
+            .filter(|_| experiment == Experiment::Repose.name())
+            .ok_or_else(|| {
+                RigError(format!(
+                    "{}: the surrogate stands in for seed 000's repose runs only, not \
+                     {experiment}",
+                    self.study.display()
+                ))
+            })?;
+        Ok(Box::new(SurrogateRig {
+            pod: PodBenchRig::new(
+                world,
+                crate::rigs::repose_cylinder::TEST,
+                mode.unwrap_or(ModeName::Quick),
+            ),
+            surrogate: Seed000Surrogate::default(),
+            delay: Duration::from_millis(self.surrogate_delay_ms),
+        }))
+    }
+}
