@@ -123,6 +123,32 @@ fn the_surrogate_calibration_through_slurm_writes_the_local_bytes() {
     assert!(arrays.iter().all(|a| a.job.is_some()));
 }
 
+#[test]
+fn plant_calibrate_through_slurm_writes_the_local_bytes_for_a_pull_its_flags_set() {
+    let Some(_) = cluster() else { return };
+    let _one = one_at_a_time();
+    let dir = tempfile::tempdir().unwrap();
+    // A pull other than the study's: the workers must build the study the flags changed.
+    let run = |out: &Path, extra: &[&str]| {
+        let o = arachis()
+            .args(["plant-calibrate", "--speed", "0.6", "--quiet", "--out"])
+            .arg(out)
+            .args(extra)
+            .output()
+            .unwrap();
+        succeeded(&o);
+        std::fs::read(out.join("plant-calibration.json")).unwrap()
+    };
+    let local = run(&dir.path().join("local"), &[]);
+    let slurm = run(&dir.path().join("slurm"), SLURM);
+    assert_eq!(slurm, local);
+    let arrays = Ledger::open(&dir.path().join("slurm/slurm"))
+        .unwrap()
+        .arrays()
+        .unwrap();
+    assert!(!arrays.is_empty(), "nothing went through the cluster");
+}
+
 /// A copy of the shipped study whose quick mode makes `pods` pods of 3 spheres, in `dir`.
 fn small_pile_study(dir: &Path, pods: u32) -> PathBuf {
     let text = std::fs::read_to_string(Path::new(ROOT).join(STUDY)).unwrap();

@@ -20,7 +20,7 @@ use super::error::CalibrateError;
 use super::factor::Factor;
 use super::objective::Objective;
 use super::progress::Progress;
-use super::rig::{response, ParameterValues, Responses, RunRequest};
+use super::rig::{response, Condition, ParameterValues, Responses, Rig, RunRequest};
 use super::run_cache::RunCache;
 use super::spec_hash::SpecHash;
 
@@ -64,6 +64,45 @@ pub fn replicate_indices(rows: &[Vec<f64>]) -> Vec<u32> {
         .enumerate()
         .map(|(i, row)| rows[..i].iter().filter(|r| *r == row).count() as u32)
         .collect()
+}
+
+/// One run of [`Executor::run_requests`]: a rig, the response read from it, and the request.
+#[derive(Clone)]
+pub struct BatchRun<'a> {
+    /// The rig.
+    pub rig: &'a dyn Rig,
+    /// The study experiment (rig name) it belongs to: how a remote worker builds the rig.
+    pub experiment: &'a str,
+    /// The response read from it.
+    pub quantity: &'a str,
+    /// Every parameter the run sets.
+    pub values: ParameterValues,
+    /// The measurement's condition.
+    pub condition: &'a Condition,
+    /// Replicate index.
+    pub replicate: u32,
+}
+
+impl BatchRun<'_> {
+    /// The rig's request.
+    pub fn request(&self) -> RunRequest<'_> {
+        RunRequest {
+            values: &self.values,
+            condition: self.condition,
+            replicate: self.replicate,
+        }
+    }
+}
+
+/// A run of [`Executor::run_requests`], finished or replayed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FinishedRun {
+    /// Hash of its specification.
+    pub spec_hash: SpecHash,
+    /// The response asked for.
+    pub response: f64,
+    /// Every response of the rig.
+    pub responses: Responses,
 }
 
 /// One run a stage hands to a [`Remote`] backend: what a worker elsewhere needs to
@@ -178,15 +217,14 @@ impl Executor {
         values
     }
 
-    /// The rig's specification of run `index` of `stage`, after checking every value
-    /// against its factor's limits.
-    pub fn specification(
+    /// Every factor's value for run `index` of `stage`, each checked against its factor's
+    /// limits.
+    pub fn checked_values(
         stage: &'static str,
         index: usize,
-        objective: &Objective<'_>,
         factors: &[Factor],
         run: &PlannedRun,
-    ) -> Result<(ParameterValues, serde_json::Value), CalibrateError> {
+    ) -> Result<ParameterValues, CalibrateError> {
         let values = Self::full_values(factors, run);
         for f in factors {
             let value = values[&f.name];
@@ -200,20 +238,7 @@ impl Executor {
                     reason,
                 })?;
         }
-        let request = RunRequest {
-            values: &values,
-            condition: &objective.condition,
-            replicate: run.replicate,
-        };
-        let spec = objective
-            .rig
-            .specification(&request)
-            .map_err(|e| CalibrateError::Spec {
-                stage,
-                run: index + 1,
-                reason: e.0,
-            })?;
-        Ok((values, spec))
+        Ok(values)
     }
 
     /// Simulates (or replays) every run of a stage in parallel and returns the records in
@@ -226,122 +251,145 @@ impl Executor {
         factors: &[Factor],
         runs: &[PlannedRun],
     ) -> Result<Vec<RunRecord>, CalibrateError> {
-        let specs = runs
+        let values = runs
             .iter()
             .enumerate()
-            .map(|(i, r)| Self::specification(stage, i, objective, factors, r))
+            .map(|(i, r)| Self::checked_values(stage, i, factors, r))
             .collect::<Result<Vec<_>, _>>()?;
-        let hashes: Vec<SpecHash> = specs.iter().map(|(_, s)| SpecHash::of(s)).collect();
-        let rig_id = objective.rig.id();
-        let mut results: Vec<Option<Responses>> = match &self.cache {
-            Some(cache) => specs
-                .iter()
-                .zip(&hashes)
-                .map(|((_, s), h)| cache.load(s, *h, &rig_id, &objective.quantity))
-                .collect(),
-            None => vec![None; runs.len()],
+        let batch: Vec<BatchRun<'_>> = runs
+            .iter()
+            .zip(values)
+            .map(|(run, values)| BatchRun {
+                rig: objective.rig,
+                experiment: &objective.experiment,
+                quantity: &objective.quantity,
+                values,
+                condition: &objective.condition,
+                replicate: run.replicate,
+            })
+            .collect();
+        let done = self.run_requests(stage, &batch)?;
+        Ok(runs
+            .iter()
+            .zip(done)
+            .enumerate()
+            .map(|(i, (run, d))| RunRecord {
+                run: i + 1,
+                coded: run.coded.clone(),
+                values: run.values.clone(),
+                replicate: run.replicate,
+                spec_hash: d.spec_hash,
+                response: d.response,
+                responses: d.responses,
+            })
+            .collect())
+    }
+
+    /// Simulates (or replays) any runs, each on its own rig and condition, in parallel (or
+    /// on the remote backend), and returns them in order. A diagnosis asks for its
+    /// predictions and finite differences this way.
+    pub fn run_requests(
+        &self,
+        stage: &'static str,
+        batch: &[BatchRun<'_>],
+    ) -> Result<Vec<FinishedRun>, CalibrateError> {
+        let specs = batch
+            .iter()
+            .enumerate()
+            .map(|(i, b)| {
+                b.rig
+                    .specification(&b.request())
+                    .map_err(|e| CalibrateError::Spec {
+                        stage,
+                        run: i + 1,
+                        reason: e.0,
+                    })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let hashes: Vec<SpecHash> = specs.iter().map(SpecHash::of).collect();
+        let rig_ids: Vec<String> = batch.iter().map(|b| b.rig.id()).collect();
+        let load = |i: usize| {
+            self.cache
+                .as_ref()
+                .and_then(|c| c.load(&specs[i], hashes[i], &rig_ids[i], batch[i].quantity))
         };
-        let missing: Vec<usize> = (0..runs.len()).filter(|&i| results[i].is_none()).collect();
-        let replayed = runs.len() - missing.len();
+        let mut results: Vec<Option<Responses>> = (0..batch.len()).map(load).collect();
+        let missing: Vec<usize> = (0..batch.len()).filter(|&i| results[i].is_none()).collect();
+        let replayed = batch.len() - missing.len();
         self.replayed.fetch_add(replayed, Ordering::Relaxed);
-        let bar = self.progress.stage(stage, runs.len(), replayed);
-        if let (Some(remote), Some(cache)) = (&self.remote, &self.cache) {
+        let bar = self.progress.stage(stage, batch.len(), replayed);
+        let failed = |i: usize, reason: String| CalibrateError::Simulation {
+            stage,
+            run: i + 1,
+            hash: hashes[i].to_string(),
+            reason,
+        };
+        if let Some(remote) = &self.remote {
             let remote_runs: Vec<RemoteRun<'_>> = missing
                 .iter()
                 .map(|&i| RemoteRun {
                     stage,
                     run: i + 1,
                     spec_hash: hashes[i],
-                    spec: &specs[i].1,
-                    rig_id: &rig_id,
-                    experiment: &objective.experiment,
-                    quantity: &objective.quantity,
-                    request: RunRequest {
-                        values: &specs[i].0,
-                        condition: &objective.condition,
-                        replicate: runs[i].replicate,
-                    },
+                    spec: &specs[i],
+                    rig_id: &rig_ids[i],
+                    experiment: batch[i].experiment,
+                    quantity: batch[i].quantity,
+                    request: batch[i].request(),
                 })
                 .collect();
+            let cache = self.cache.as_ref().expect("a remote executor has a cache");
             remote.run_all(&remote_runs, cache, &bar)?;
             for &i in &missing {
-                results[i] = cache.load(&specs[i].1, hashes[i], &rig_id, &objective.quantity);
-                if results[i].is_none() {
-                    return Err(CalibrateError::Simulation {
-                        stage,
-                        run: i + 1,
-                        hash: hashes[i].to_string(),
-                        reason: format!(
+                results[i] = Some(load(i).ok_or_else(|| {
+                    failed(
+                        i,
+                        format!(
                             "the remote executor finished without a valid stored run {}",
                             cache.path(hashes[i]).display()
                         ),
-                    });
-                }
+                    )
+                })?);
             }
             self.simulated.fetch_add(missing.len(), Ordering::Relaxed);
+        } else {
+            // The runs of a stage share the cores: each steps on its share of the threads.
+            let in_flight = self.pool.current_num_threads().min(missing.len()).max(1);
+            let threads_per_run = (crate::stepping::default_threads() / in_flight).max(1);
+            let outcome: Vec<Result<(usize, Responses), CalibrateError>> =
+                self.pool.install(|| {
+                    missing
+                        .par_iter()
+                        .map(|&i| {
+                            let b = &batch[i];
+                            let responses = crate::stepping::with_threads(threads_per_run, || {
+                                b.rig.run(&b.request())
+                            })
+                            .map_err(|e| failed(i, e.0))?;
+                            response(&responses, b.quantity).map_err(|e| failed(i, e.0))?;
+                            if let Some(cache) = &self.cache {
+                                cache.store(&specs[i], hashes[i], &rig_ids[i], &responses)?;
+                            }
+                            self.simulated.fetch_add(1, Ordering::Relaxed);
+                            bar.inc(1);
+                            Ok((i, responses))
+                        })
+                        .collect()
+                });
+            for item in outcome {
+                let (i, responses) = item?;
+                results[i] = Some(responses);
+            }
         }
-        let missing: Vec<usize> = missing
-            .into_iter()
-            .filter(|&i| results[i].is_none())
-            .collect();
-        // The runs of a stage share the cores: each steps on its share of the threads.
-        let in_flight = self.pool.current_num_threads().min(missing.len()).max(1);
-        let threads_per_run = (crate::stepping::default_threads() / in_flight).max(1);
-        let outcome: Vec<Result<(usize, Responses), CalibrateError>> = self.pool.install(|| {
-            missing
-                .par_iter()
-                .map(|&i| {
-                    let failed = |reason: String| CalibrateError::Simulation {
-                        stage,
-                        run: i + 1,
-                        hash: hashes[i].to_string(),
-                        reason,
-                    };
-                    let (values, spec) = &specs[i];
-                    let request = RunRequest {
-                        values,
-                        condition: &objective.condition,
-                        replicate: runs[i].replicate,
-                    };
-                    let responses = crate::stepping::with_threads(threads_per_run, || {
-                        objective.rig.run(&request)
-                    })
-                    .map_err(|e| failed(e.0))?;
-                    response(&responses, &objective.quantity).map_err(|e| failed(e.0))?;
-                    if let Some(cache) = &self.cache {
-                        cache.store(spec, hashes[i], &rig_id, &responses)?;
-                    }
-                    self.simulated.fetch_add(1, Ordering::Relaxed);
-                    bar.inc(1);
-                    Ok((i, responses))
-                })
-                .collect()
-        });
         bar.finish_and_clear();
-        for item in outcome {
-            let (i, responses) = item?;
-            results[i] = Some(responses);
-        }
-        runs.iter()
-            .zip(results)
-            .zip(&hashes)
+        results
+            .into_iter()
             .enumerate()
-            .map(|(i, ((run, responses), hash))| {
+            .map(|(i, responses)| {
                 let responses = responses.expect("every run finished");
-                let value = response(&responses, &objective.quantity).map_err(|e| {
-                    CalibrateError::Simulation {
-                        stage,
-                        run: i + 1,
-                        hash: hash.to_string(),
-                        reason: e.0,
-                    }
-                })?;
-                Ok(RunRecord {
-                    run: i + 1,
-                    coded: run.coded.clone(),
-                    values: run.values.clone(),
-                    replicate: run.replicate,
-                    spec_hash: *hash,
+                let value = response(&responses, batch[i].quantity).map_err(|e| failed(i, e.0))?;
+                Ok(FinishedRun {
+                    spec_hash: hashes[i],
                     response: value,
                     responses,
                 })

@@ -26,7 +26,7 @@ pub mod settings;
 pub mod spec_hash;
 
 pub use error::CalibrateError;
-pub use executor::{Executor, PlannedRun, Remote, RemoteRun, RunRecord};
+pub use executor::{BatchRun, Executor, FinishedRun, PlannedRun, Remote, RemoteRun, RunRecord};
 pub use factor::Factor;
 pub use objective::Objective;
 pub use plan::Stages;

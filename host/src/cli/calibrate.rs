@@ -16,6 +16,7 @@ use std::time::Instant;
 use anyhow::{bail, ensure, Context};
 
 use crate::calibration::{calibrate, Executor, Outcome, Problem, Progress};
+use crate::cluster::recipe::ShippedPull;
 use crate::cluster::{ClusterArgs, ExecutorKind, RigRecipe, SlurmExecutor};
 use crate::report::{pull_off, write_calibration, Provenance};
 use crate::rigs::pod_world::ModeName;
@@ -65,6 +66,9 @@ pub struct Args {
     /// Where the simulations run (this machine or a Slurm cluster).
     #[command(flatten)]
     pub cluster: ClusterArgs,
+    /// Set by `plant-calibrate`: the study is the built-in pull-off study with this pull.
+    #[arg(skip)]
+    pub shipped_pull_off: Option<ShippedPull>,
 }
 
 impl Args {
@@ -84,6 +88,7 @@ impl Args {
         let mut recipe = RigRecipe::new(&self.study, self.simulator, mode)
             .with_context(|| format!("{}: cannot make the path absolute", self.study.display()))?;
         recipe.surrogate_delay_ms = self.surrogate_delay_ms;
+        recipe.shipped_pull_off = self.shipped_pull_off;
         Ok(recipe)
     }
 

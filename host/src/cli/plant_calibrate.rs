@@ -49,6 +49,9 @@ pub struct Args {
     /// No progress bars.
     #[arg(long)]
     pub quiet: bool,
+    /// Where the simulations run (this machine or a Slurm cluster).
+    #[command(flatten)]
+    pub cluster: crate::cluster::ClusterArgs,
 }
 
 /// Runs `arachis plant-calibrate`.
@@ -91,7 +94,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         strict: true,
         simulator: SimulatorChoice::Dem,
         surrogate_delay_ms: 0,
-        cluster: crate::cluster::ClusterArgs::default(),
+        cluster: args.cluster.clone(),
+        shipped_pull_off: Some(crate::cluster::recipe::ShippedPull {
+            speed_m_s: speed,
+            angle_deg: angle,
+        }),
     };
     let verdict = calibrate_study(&calibrate, &study);
     let path = args.out.join(JSON_FILE);

@@ -7,7 +7,7 @@
 //! use arachis::study::Study;
 //! let recipe = RigRecipe::new("testdata/peanut-pods-saline/study.toml".as_ref(),
 //!                             Simulator::Surrogate, None)?;
-//! let study = Study::load(&recipe.study)?;
+//! let study = recipe.load_study()?;
 //! let rig = recipe.build(&study, "repose")?;
 //! # Ok::<(), anyhow::Error>(())
 //! ```
@@ -35,11 +35,25 @@ pub enum Simulator {
     Surrogate,
 }
 
+/// The pull of seed 001's built-in pull-off study as `plant-calibrate` set it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ShippedPull {
+    /// Gripper speed, m/s.
+    pub speed_m_s: f64,
+    /// Pull direction from the stalk axis, degrees.
+    pub angle_deg: f64,
+}
+
 /// Everything besides a run's values that decides which rig simulates it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RigRecipe {
-    /// The study file, as an absolute path (workers may start in another folder).
+    /// The study file, as an absolute path (workers may start in another folder); for the
+    /// built-in pull-off study, the path it is known by.
     pub study: PathBuf,
+    /// Set when the study is seed 001's built-in pull-off study (`plant-calibrate`), with
+    /// the pull its flags chose: the worker builds that study, not the file.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shipped_pull_off: Option<ShippedPull>,
     /// The simulator.
     pub simulator: Simulator,
     /// The run mode of a pod rig (`quick`, `full`), if the study has modes.
@@ -62,10 +76,23 @@ impl RigRecipe {
     ) -> std::io::Result<Self> {
         Ok(Self {
             study: std::path::absolute(study)?,
+            shipped_pull_off: None,
             simulator,
             mode: mode.map(|m| m.as_str().to_owned()),
             allow_extreme: crate::plausible::extreme_allowed(),
             surrogate_delay_ms: 0,
+        })
+    }
+
+    /// The recipe's study, loaded (or built, for the built-in pull-off study).
+    pub fn load_study(&self) -> anyhow::Result<Study> {
+        Ok(match self.shipped_pull_off {
+            Some(pull) => {
+                let mut study = Study::shipped_pull_off();
+                study.set_pull(pull.speed_m_s, pull.angle_deg);
+                study
+            }
+            None => Study::load(&self.study)?,
         })
     }
 

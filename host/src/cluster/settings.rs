@@ -44,7 +44,8 @@ pub struct ClusterArgs {
     /// Slurm account to charge.
     #[arg(long)]
     pub account: Option<String>,
-    /// Slurm time limit of each run, minutes (default: 60).
+    /// Slurm time limit of each run, minutes (default: 3 × the longest run this campaign
+    /// has measured, at least 5; 60 before its first run has finished).
     #[arg(long, value_name = "MIN", value_parser = count::<u32>(1, MAX_TIME_PER_RUN_MIN))]
     pub time_per_run: Option<u32>,
     /// CPUs of each run on the cluster (the threaded step uses them all).

@@ -111,10 +111,7 @@ impl SlurmExecutor {
             log_pattern: &log,
             partition: self.settings.partition.as_deref(),
             account: self.settings.account.as_deref(),
-            time_limit_min: self
-                .settings
-                .time_per_run
-                .unwrap_or(DEFAULT_TIME_PER_RUN_MIN),
+            time_limit_min: self.time_limit_min(),
             cpus_per_task: self.settings.cpus_per_run,
             extra: &extra,
         }
@@ -131,6 +128,20 @@ impl SlurmExecutor {
         Ok(())
     }
 
+    /// The time limit of each task, minutes: `--time-per-run` when given; else
+    /// [`TIME_MARGIN`] times the longest run this campaign has measured so far (the
+    /// workers' logs), at least [`MIN_TIME_PER_RUN_MIN`]; else, before any run has finished,
+    /// [`DEFAULT_TIME_PER_RUN_MIN`].
+    fn time_limit_min(&self) -> u32 {
+        if let Some(t) = self.settings.time_per_run {
+            return t;
+        }
+        let longest = longest_run_s(&self.ledger.dir().join("logs"));
+        longest.map_or(DEFAULT_TIME_PER_RUN_MIN, |s| {
+            ((s * TIME_MARGIN / 60.0).ceil() as u32).max(MIN_TIME_PER_RUN_MIN)
+        })
+    }
+
     /// The spec hashes of this campaign's tasks still in the queue.
     fn in_flight(&self) -> anyhow::Result<BTreeSet<String>> {
         let queued = queued_tasks(&self.ledger.job_prefix()).map_err(anyhow::Error::msg)?;
@@ -143,6 +154,29 @@ impl SlurmExecutor {
             })
             .collect())
     }
+}
+
+/// A measured run's time limit is this many times its wall time: runs of one campaign
+/// differ in their settling time, and a killed run costs a whole retry.
+pub const TIME_MARGIN: f64 = 3.0;
+/// The shortest time limit a measured campaign gets, minutes (a task's start-up and a
+/// loaded node's slowness must fit too).
+pub const MIN_TIME_PER_RUN_MIN: u32 = 5;
+
+/// The longest wall time, s, of the runs the workers whose logs are in `logs` simulated
+/// (the JSON line `arachis run` prints; runs found already stored do not count).
+fn longest_run_s(logs: &Path) -> Option<f64> {
+    let entries = std::fs::read_dir(logs).ok()?;
+    entries
+        .filter_map(|e| std::fs::read_to_string(e.ok()?.path()).ok())
+        .flat_map(|text| {
+            text.lines()
+                .filter_map(|l| serde_json::from_str::<serde_json::Value>(l).ok())
+                .filter(|v| v["already_stored"] == false)
+                .filter_map(|v| v["wall_seconds"].as_f64())
+                .collect::<Vec<_>>()
+        })
+        .reduce(f64::max)
 }
 
 /// The last non-empty line of a log, for the message that names it.
@@ -220,5 +254,25 @@ impl Remote for SlurmExecutor {
                 self.submit(submit, cache, stage).map_err(io)?;
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_longest_simulated_run_is_read_from_the_workers_logs() {
+        let dir = tempfile::tempdir().unwrap();
+        assert_eq!(longest_run_s(dir.path()), None);
+        let line = |s: f64, stored: bool| {
+            format!("{{\"spec_hash\":\"ab\",\"already_stored\":{stored},\"wall_seconds\":{s}}}\n")
+        };
+        std::fs::write(dir.path().join("a0001_0.log"), line(120.5, false)).unwrap();
+        let other = format!("starting\n{}", line(999.0, true));
+        std::fs::write(dir.path().join("a0001_1.log"), other).unwrap();
+        std::fs::write(dir.path().join("a0001_2.log"), line(300.0, false)).unwrap();
+        std::fs::write(dir.path().join("a0001_3.log"), "error: killed\n").unwrap();
+        assert_eq!(longest_run_s(dir.path()), Some(300.0));
     }
 }

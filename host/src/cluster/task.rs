@@ -101,6 +101,7 @@ mod tests {
         let condition = Condition::from([("lift_speed_m_s".to_owned(), 0.01)]);
         let recipe = RigRecipe {
             study: "/data/study.toml".into(),
+            shipped_pull_off: None,
             simulator: Simulator::Dem,
             mode: Some("quick".into()),
             allow_extreme: false,

@@ -30,7 +30,6 @@ use super::task::RunTask;
 use crate::calibration::rig::response;
 use crate::calibration::run_cache::RunCache;
 use crate::calibration::{RunRequest, SpecHash};
-use crate::study::Study;
 
 /// Environment variable: a spec hash whose run fails every time (test hook).
 pub const FAIL_RUN_ENV: &str = "ARACHIS_TEST_FAIL_RUN";
@@ -60,7 +59,7 @@ pub struct Done {
 pub fn run_task(task: &RunTask, cache_dir: &Path) -> anyhow::Result<Done> {
     let started = Instant::now();
     crate::plausible::allow_extreme(task.recipe.allow_extreme);
-    let study = Study::load(&task.recipe.study)?;
+    let study = task.recipe.load_study()?;
     let rig = task.recipe.build(&study, &task.experiment)?;
     let request = RunRequest {
         values: &task.values,
