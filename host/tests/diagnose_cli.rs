@@ -199,3 +199,41 @@ fn bad_input_is_a_clear_error() {
     assert!(err.contains("plots.svg: is a file"), "{err}");
     assert!(out.stdout.is_empty(), "the fit ran first");
 }
+
+/// `--runs DIR` stores every simulation of `compare`, `diagnose` and `fit` in a run cache:
+/// the first call fills it, a second replays it, and both print what the command prints
+/// without a cache (the same numbers, wherever the runs came from).
+#[test]
+fn a_run_cache_gives_the_same_report_and_is_replayed() {
+    const MEASURED: &str = "testdata/diagnosis-tutorial/measured.toml";
+    let dir = tempfile::tempdir().unwrap();
+    for command in ["compare", "diagnose"] {
+        let runs = dir.path().join(command);
+        let runs = runs.to_str().unwrap();
+        let plain = ok(&arachis(&[command, MEASURED]));
+        let filled = ok(&arachis(&[command, MEASURED, "--runs", runs]));
+        let stored = std::fs::read_dir(runs).unwrap().count();
+        assert!(stored > 1, "{command}: {stored} stored runs");
+        // Replayed, not simulated again: no stored run is rewritten.
+        let stamp = |p: &str| -> Vec<_> {
+            let mut v: Vec<_> = std::fs::read_dir(p)
+                .unwrap()
+                .map(|e| {
+                    let e = e.unwrap();
+                    (e.file_name(), e.metadata().unwrap().modified().unwrap())
+                })
+                .collect();
+            v.sort();
+            v
+        };
+        let before = stamp(runs);
+        let replayed = ok(&arachis(&[command, MEASURED, "--runs", runs]));
+        assert_eq!(
+            stamp(runs),
+            before,
+            "{command}: the cache was written again"
+        );
+        assert_eq!(filled, plain, "{command}");
+        assert_eq!(replayed, plain, "{command}");
+    }
+}

@@ -149,6 +149,35 @@ fn plant_calibrate_through_slurm_writes_the_local_bytes_for_a_pull_its_flags_set
     assert!(!arrays.is_empty(), "nothing went through the cluster");
 }
 
+#[test]
+fn compare_through_slurm_prints_the_local_report() {
+    let Some(_) = cluster() else { return };
+    let _one = one_at_a_time();
+    let dir = tempfile::tempdir().unwrap();
+    let measured = "testdata/diagnosis-tutorial/measured.toml";
+    let local = arachis().args(["compare", measured]).output().unwrap();
+    succeeded(&local);
+    let runs = dir.path().join("runs");
+    let slurm = arachis()
+        .args([
+            "compare",
+            measured,
+            "--executor",
+            "slurm",
+            "--poll-seconds",
+            "1",
+            "--runs",
+        ])
+        .arg(&runs)
+        .output()
+        .unwrap();
+    succeeded(&slurm);
+    assert_eq!(slurm.stdout, local.stdout);
+    let arrays = Ledger::open(&runs.join("slurm")).unwrap().arrays().unwrap();
+    let simulated: usize = arrays.iter().map(|a| a.hashes.len()).sum();
+    assert!(simulated > 1, "nothing went through the cluster");
+}
+
 /// A copy of the shipped study whose quick mode makes `pods` pods of 3 spheres, in `dir`.
 fn small_pile_study(dir: &Path, pods: u32) -> PathBuf {
     let text = std::fs::read_to_string(Path::new(ROOT).join(STUDY)).unwrap();

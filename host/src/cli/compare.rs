@@ -26,13 +26,18 @@ pub struct Args {
     /// Directory for the SVG plots (created if missing); no plots without it.
     #[arg(long)]
     pub plots: Option<PathBuf>,
+    /// Where the simulations run, and the run cache that keeps them.
+    #[command(flatten)]
+    pub runs: super::runs_args::RunsArgs,
 }
 
 /// Runs `arachis compare`.
 pub fn run(args: Args) -> Result<()> {
     let study = Study::load(&args.study)?;
     let data = Dataset::new(&study)?;
-    let model = Model::new(&study, &data.experiments)?;
+    let model = args
+        .runs
+        .attach(Model::new(&study, &data.experiments)?, &study)?;
     let pred = predict(&data, &model, &study.current_values())?;
     print!("{}", report(&data, &pred)?);
     if let Some(dir) = &args.plots {

@@ -30,6 +30,9 @@ pub struct Args {
     /// Skip the search for the measurement that separates the top two effects.
     #[arg(long)]
     pub no_proposal: bool,
+    /// Where the simulations run, and the run cache that keeps them.
+    #[command(flatten)]
+    pub runs: super::runs_args::RunsArgs,
 }
 
 /// Runs `arachis diagnose`.
@@ -37,7 +40,9 @@ pub fn run(args: Args) -> Result<()> {
     use std::fmt::Write;
     let study = Study::load(&args.study)?;
     let data = Dataset::new(&study)?;
-    let model = Model::new(&study, &data.experiments)?;
+    let model = args
+        .runs
+        .attach(Model::new(&study, &data.experiments)?, &study)?;
     let current = study.current_values();
     let lin = Linearisation::new(&data, &model, &current)?;
     let lof = lack_of_fit(&data, &lin.predictions)?;

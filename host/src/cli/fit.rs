@@ -42,6 +42,9 @@ pub struct Args {
     /// Directory for SVG plots of measured vs before/after.
     #[arg(long)]
     pub plots: Option<PathBuf>,
+    /// Where the simulations run, and the run cache that keeps them.
+    #[command(flatten)]
+    pub runs: super::runs_args::RunsArgs,
 }
 
 /// Runs `arachis fit`.
@@ -57,7 +60,9 @@ pub fn run(args: Args) -> Result<()> {
         );
     }
     let study = Study::load(&args.study)?;
-    let model = Model::new(&study, &experiments(&study))?;
+    let model = args
+        .runs
+        .attach(Model::new(&study, &experiments(&study))?, &study)?;
     let eff = model.catalogue.effect(&args.with)?;
     let data = Dataset::new(&study)?;
     let current = study.current_values();

@@ -18,6 +18,7 @@ pub mod plant_calibrate;
 pub mod pour;
 pub mod pulloff;
 pub mod run;
+pub mod runs_args;
 pub mod simulate;
 pub mod study;
 pub mod synth;

@@ -1,12 +1,12 @@
 //! Model predictions and finite-difference sensitivities ∂ŷ/∂θ at every measured condition
 //! (DESIGN §10 step 2). Base parameters use central differences; an effect at its off value
 //! (0, the lower bound) uses a forward difference, the one-sided derivative that matters for
-//! a parameter that can only grow. Simulations run in parallel (rayon); each is deterministic,
-//! so the result does not depend on the thread count.
+//! a parameter that can only grow. Simulations run in parallel or through the model's
+//! executor ([`Model::simulate_all`]); each is deterministic, so the result does not depend
+//! on the thread count or on where it ran.
 
 use anyhow::Result;
 use nalgebra::DMatrix;
-use rayon::prelude::*;
 
 use super::model::Model;
 use super::params::{set, value, ParamInfo, Role};
@@ -15,14 +15,17 @@ use crate::calibration::ParameterValues;
 
 /// Predictions at every condition of `data` with parameters `p`.
 pub fn predict(data: &Dataset, model: &Model<'_>, p: &ParameterValues) -> Result<Vec<f64>> {
-    data.obs
-        .par_iter()
-        .map(|o| model.simulate(o.experiment, &o.condition, p))
-        .collect()
+    let runs: Vec<_> = data
+        .obs
+        .iter()
+        .map(|o| (o.experiment, &o.condition, p.clone()))
+        .collect();
+    model.simulate_all(&runs)
 }
 
 /// Columns ∂ŷ/∂θ (observable unit per parameter unit) for each parameter in `params`, given
-/// the predictions `at` at `p`. Returns an N × len(params) matrix.
+/// the predictions `at` at `p`. Returns an N × len(params) matrix. Every simulation of the
+/// matrix is asked for in one batch.
 pub fn jacobian(
     data: &Dataset,
     model: &Model<'_>,
@@ -31,29 +34,42 @@ pub fn jacobian(
     params: &[&ParamInfo],
 ) -> Result<DMatrix<f64>> {
     let n = data.obs.len();
-    let jobs: Vec<(usize, usize)> = (0..params.len())
-        .flat_map(|j| (0..n).map(move |i| (j, i)))
-        .collect();
-    let cols: Vec<f64> = jobs
-        .par_iter()
-        .map(|&(j, i)| -> Result<f64> {
-            let info = params[j];
-            let h = info.fd_step;
-            let v = value(info, p);
-            let o = &data.obs[i];
-            let mut up = p.clone();
-            set(info, &mut up, v + h);
-            let y_up = model.simulate(o.experiment, &o.condition, &up)?;
-            if v - h >= 0.0 || info.role == Role::Base {
-                let mut dn = p.clone();
-                set(info, &mut dn, v - h);
-                let y_dn = model.simulate(o.experiment, &o.condition, &dn)?;
-                Ok((y_up - y_dn) / (2.0 * h))
-            } else {
-                Ok((y_up - at[i]) / h)
-            }
+    // Per column: the step, and whether the difference is central (else forward from `at`).
+    let columns: Vec<(f64, bool)> = params
+        .iter()
+        .map(|info| {
+            let (h, v) = (info.fd_step, value(info, p));
+            (h, v - h >= 0.0 || info.role == Role::Base)
         })
-        .collect::<Result<_>>()?;
+        .collect();
+    let mut runs = Vec::new();
+    for (info, &(h, central)) in params.iter().zip(&columns) {
+        let v = value(info, p);
+        let shifts: &[f64] = if central { &[1.0, -1.0] } else { &[1.0] };
+        for &sign in shifts {
+            let mut shifted = p.clone();
+            set(info, &mut shifted, v + sign * h);
+            runs.extend(
+                data.obs
+                    .iter()
+                    .map(|o| (o.experiment, &o.condition, shifted.clone())),
+            );
+        }
+    }
+    let y = model.simulate_all(&runs)?;
+    let mut cols = Vec::with_capacity(n * params.len());
+    let mut k = 0;
+    for &(h, central) in &columns {
+        let up = &y[k..k + n];
+        k += n;
+        if central {
+            let dn = &y[k..k + n];
+            k += n;
+            cols.extend(up.iter().zip(dn).map(|(u, d)| (u - d) / (2.0 * h)));
+        } else {
+            cols.extend(up.iter().zip(at).map(|(u, a)| (u - a) / h));
+        }
+    }
     Ok(DMatrix::from_column_slice(n, params.len(), &cols))
 }
 

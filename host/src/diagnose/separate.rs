@@ -85,7 +85,9 @@ pub fn propose(
     let theta_a = if a.1 > 0.0 { a.1 } else { a.0.fd_step };
     let theta_b = if b.1 > 0.0 { b.1 } else { b.0.fd_step };
     let now = separation(&jt, &sa, &sb, theta_a, theta_b);
-    let mut best: Option<Proposal> = None;
+    // The candidate measurements: every grid point of every experiment that has a search
+    // range and a noise SD, with its weight.
+    let mut grid: Vec<(usize, f64, Condition, f64)> = Vec::new();
     for (ei, e) in data.experiments.iter().enumerate() {
         let search = crate::rigs::catalogue::find(&e.rig)
             .and_then(|k| k.condition(&e.condition.0))
@@ -96,37 +98,47 @@ pub fn propose(
         let wx = (replicates as f64).sqrt() / sd;
         for g in 0..GRID_POINTS {
             let x = lo * (hi / lo).powf(g as f64 / (GRID_POINTS - 1) as f64);
-            let at = Condition::from([(e.condition.0.clone(), x)]);
-            let simulate = |p: &ParameterValues| model.simulate(ei, &at, p);
-            let y0 = simulate(p)?;
-            let d = |info: &ParamInfo, central: bool| -> Result<f64> {
-                let v = value(info, p);
-                let mut up = p.clone();
-                set(info, &mut up, v + info.fd_step);
-                let yu = simulate(&up)?;
-                if central {
-                    let mut dn = p.clone();
-                    set(info, &mut dn, v - info.fd_step);
-                    Ok((yu - simulate(&dn)?) / (2.0 * info.fd_step))
-                } else {
-                    Ok((yu - y0) / info.fd_step)
-                }
-            };
-            let mut jx = jt.clone().insert_row(n, 0.0);
-            for (k, info) in lin.calibrated.iter().enumerate() {
-                jx[(n, k)] = d(info, true)? * wx;
-            }
-            let sax = sa.clone().insert_row(n, d(a.0, false)? * wx);
-            let sbx = sb.clone().insert_row(n, d(b.0, false)? * wx);
-            let s = separation(&jx, &sax, &sbx, theta_a, theta_b);
-            if best.as_ref().is_none_or(|bp| s > bp.separation_after) {
-                best = Some(Proposal {
-                    experiment: ei,
-                    condition: x,
-                    separation_after: s,
-                    separation_now: now,
-                });
-            }
+            grid.push((ei, x, Condition::from([(e.condition.0.clone(), x)]), wx));
+        }
+    }
+    // Every simulation of every candidate, asked for in one batch: per candidate the
+    // prediction at p, each calibrated parameter stepped up and down, then a and b stepped up.
+    let shifted = |info: &ParamInfo, sign: f64| {
+        let mut q = p.clone();
+        set(info, &mut q, value(info, p) + sign * info.fd_step);
+        q
+    };
+    let mut runs = Vec::new();
+    for (ei, _, at, _) in &grid {
+        runs.push((*ei, at, p.clone()));
+        for info in &lin.calibrated {
+            runs.push((*ei, at, shifted(info, 1.0)));
+            runs.push((*ei, at, shifted(info, -1.0)));
+        }
+        runs.push((*ei, at, shifted(a.0, 1.0)));
+        runs.push((*ei, at, shifted(b.0, 1.0)));
+    }
+    let y = model.simulate_all(&runs)?;
+    let per_candidate = 3 + 2 * lin.calibrated.len();
+    let mut best: Option<Proposal> = None;
+    for ((ei, x, _, wx), y) in grid.iter().zip(y.chunks(per_candidate)) {
+        let y0 = y[0];
+        let mut jx = jt.clone().insert_row(n, 0.0);
+        for (k, info) in lin.calibrated.iter().enumerate() {
+            let (up, dn) = (y[1 + 2 * k], y[2 + 2 * k]);
+            jx[(n, k)] = (up - dn) / (2.0 * info.fd_step) * wx;
+        }
+        let forward = |info: &ParamInfo, up: f64| (up - y0) / info.fd_step * wx;
+        let sax = sa.clone().insert_row(n, forward(a.0, y[per_candidate - 2]));
+        let sbx = sb.clone().insert_row(n, forward(b.0, y[per_candidate - 1]));
+        let s = separation(&jx, &sax, &sbx, theta_a, theta_b);
+        if best.as_ref().is_none_or(|bp| s > bp.separation_after) {
+            best = Some(Proposal {
+                experiment: *ei,
+                condition: *x,
+                separation_after: s,
+                separation_now: now,
+            });
         }
     }
     Ok(best)
