@@ -184,4 +184,24 @@ mod tests {
             Some(Responses::from([("repose_angle".to_owned(), 30.5)]))
         );
     }
+
+    /// What a reader on a network file system might see of a run being written: any prefix
+    /// of the file. Only the whole file is replayed.
+    #[test]
+    fn no_prefix_of_a_stored_run_is_replayed() {
+        let dir = tempfile::tempdir().unwrap();
+        let cache = RunCache::open(dir.path()).unwrap();
+        let spec = serde_json::json!({"c": [0.25, "x"]});
+        let hash = SpecHash::of(&spec);
+        let responses = Responses::from([("angle".to_owned(), 29.75)]);
+        cache.store(&spec, hash, "rig-1", &responses).unwrap();
+        let whole = std::fs::read(cache.path(hash)).unwrap();
+        for len in 0..whole.len() {
+            std::fs::write(cache.path(hash), &whole[..len]).unwrap();
+            let replayed = cache.load(&spec, hash, "rig-1", "angle");
+            // A prefix that still parses (cut in the trailing newline) is the whole run.
+            let complete = whole[len..].iter().all(u8::is_ascii_whitespace);
+            assert_eq!(replayed.is_some(), complete, "a {len}-byte prefix");
+        }
+    }
 }
