@@ -38,14 +38,7 @@ impl RunsArgs {
         };
         let mut executor = Executor::new(None, Some(&runs), Progress::new(false))?;
         if slurm {
-            let mode = study
-                .file()
-                .plan
-                .as_ref()
-                .and_then(|p| p.mode.as_deref())
-                .map(str::parse)
-                .transpose()?;
-            let recipe = RigRecipe::new(study.path(), Simulator::Dem, mode).with_context(|| {
+            let recipe = RigRecipe::new(study.path(), Simulator::Dem, study.plan_mode()?).with_context(|| {
                 format!("{}: cannot make the path absolute", study.path().display())
             })?;
             let records = Path::new(&runs).join(crate::cluster::SLURM_DIR);

@@ -34,15 +34,8 @@ pub struct Model<'a> {
 impl<'a> Model<'a> {
     /// The rigs of `experiments` over `study` (a pod rig in the study's default mode).
     pub fn new(study: &'a Study, experiments: &[Experiment]) -> Result<Self> {
-        let mode = study
-            .file()
-            .plan
-            .as_ref()
-            .and_then(|p| p.mode.as_deref())
-            .map(str::parse)
-            .transpose()?;
         let options = RigOptions {
-            mode,
+            mode: study.plan_mode()?,
             ..RigOptions::default()
         };
         let rigs = experiments

@@ -129,6 +129,16 @@ impl Study {
         &self.file
     }
 
+    /// The plan's default run mode (`[plan] mode`), if it names one.
+    pub fn plan_mode(&self) -> Result<Option<ModeName>, ExperimentError> {
+        self.file
+            .plan
+            .as_ref()
+            .and_then(|p| p.mode.as_deref())
+            .map(str::parse)
+            .transpose()
+    }
+
     /// The study's name (`[study] name`, or `[diagnosis] name`).
     pub fn name(&self) -> &str {
         match (&self.file.study, &self.file.diagnosis) {
