@@ -47,8 +47,13 @@ install_packages() {
 }
 
 up() {
-    [ -f "$conf" ] && SLURM_CONF="$conf" timeout 10 sinfo -h -o '%T' 2>/dev/null |
+    [ -f "$conf" ] && SLURM_CONF="$conf" timeout 3 sinfo -h -o '%T' 2>/dev/null |
         grep -Eq '^(idle|mixed|allocated)'
+}
+
+# munged answers: a credential it makes, it can read back.
+munge_ok() {
+    munge -n 2>/dev/null | unmunge >/dev/null 2>&1
 }
 
 write_config() {
@@ -96,13 +101,18 @@ start() {
     fi
     install_packages
     write_config
-    if ! pgrep -x munged >/dev/null; then
+    if ! munge_ok; then
         [ -f /etc/munge/munge.key ] ||
             "${as_root[@]}" mungekey --create >&2 || cannot "no munge key and mungekey failed"
         "${as_root[@]}" mkdir -p /run/munge
         "${as_root[@]}" chown munge:munge /run/munge 2>/dev/null || true
-        "${as_root[@]}" su -s /bin/sh munge -c munged >&2 2>&1 ||
+        "${as_root[@]}" su -s /bin/sh munge -c munged >&2 ||
             "${as_root[@]}" munged --force >&2 || cannot "munged did not start"
+        for _ in $(seq 20); do
+            munge_ok && break
+            sleep 0.25
+        done
+        munge_ok || cannot "munged started but does not answer (munge -n | unmunge)"
     fi
     "${as_root[@]}" env SLURM_CONF="$conf" slurmctld >&2 || cannot "slurmctld did not start"
     "${as_root[@]}" env SLURM_CONF="$conf" slurmd >&2 || cannot "slurmd did not start"

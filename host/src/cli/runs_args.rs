@@ -38,9 +38,10 @@ impl RunsArgs {
         };
         let mut executor = Executor::new(None, Some(&runs), Progress::new(false))?;
         if slurm {
-            let recipe = RigRecipe::new(study.path(), Simulator::Dem, study.plan_mode()?).with_context(|| {
-                format!("{}: cannot make the path absolute", study.path().display())
-            })?;
+            let recipe = RigRecipe::new(study.path(), Simulator::Dem, study.plan_mode()?)
+                .with_context(|| {
+                    format!("{}: cannot make the path absolute", study.path().display())
+                })?;
             let records = Path::new(&runs).join(crate::cluster::SLURM_DIR);
             let remote = SlurmExecutor::new(recipe, &self.cluster, &records, false)?;
             executor = executor.with_remote(Box::new(remote))?;
