@@ -329,3 +329,66 @@ fn same_seed_draws_the_same_layouts() {
     assert_eq!(draw(3), draw(3));
     assert_ne!(draw(3), draw(4));
 }
+
+/// `--runs DIR` keeps every pass in a run cache: the report file has the bytes of a run
+/// without it, a second run replays every pass (no stored pass is rewritten) with the same
+/// bytes, and frames, which only a pass run here can draw, are refused with it.
+#[test]
+fn a_run_cache_keeps_the_passes_and_gives_the_same_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let runs = dir.path().join("runs");
+    let harvest = |report: &str, extra: &[&str]| {
+        let path = dir.path().join(report);
+        let mut args = vec![
+            "harvest",
+            "--plants",
+            "1",
+            "--replicates",
+            "2",
+            "--drum-length",
+            "0.02",
+            "--forward-speed",
+            "2",
+            "--output",
+            path.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let out = arachis(&args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        std::fs::read(path).unwrap()
+    };
+    let plain = harvest("plain.json", &[]);
+    let cache = ["--runs", runs.to_str().unwrap()];
+    assert_eq!(harvest("filled.json", &cache), plain);
+    let stamps = || -> Vec<_> {
+        let mut v: Vec<_> = std::fs::read_dir(&runs)
+            .unwrap()
+            .map(|e| {
+                let e = e.unwrap();
+                (e.file_name(), e.metadata().unwrap().modified().unwrap())
+            })
+            .collect();
+        v.sort();
+        v
+    };
+    let before = stamps();
+    assert_eq!(before.len(), 2, "one stored run per pass");
+    assert_eq!(harvest("replayed.json", &cache), plain);
+    assert_eq!(stamps(), before, "a stored pass was simulated again");
+
+    let vtk = dir.path().join("vtk");
+    let out = arachis(&[
+        "harvest",
+        "--runs",
+        runs.to_str().unwrap(),
+        "--vtk",
+        vtk.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("--vtk"), "{err}");
+}

@@ -178,6 +178,44 @@ fn compare_through_slurm_prints_the_local_report() {
     assert!(simulated > 1, "nothing went through the cluster");
 }
 
+#[test]
+fn harvest_replicates_through_slurm_write_the_local_report() {
+    let Some(_) = cluster() else { return };
+    let _one = one_at_a_time();
+    let dir = tempfile::tempdir().unwrap();
+    let harvest = |report: &str, extra: &[&str]| {
+        let path = dir.path().join(report);
+        let o = arachis()
+            .args([
+                "harvest",
+                "--plants",
+                "1",
+                "--replicates",
+                "3",
+                "--drum-length",
+                "0.02",
+            ])
+            .args(["--forward-speed", "2", "--output"])
+            .arg(&path)
+            .args(extra)
+            .output()
+            .unwrap();
+        succeeded(&o);
+        std::fs::read(path).unwrap()
+    };
+    let local = harvest("local.json", &[]);
+    let runs = dir.path().join("runs");
+    let mut flags = SLURM.to_vec();
+    flags.extend(["--runs", runs.to_str().unwrap()]);
+    assert_eq!(harvest("slurm.json", &flags), local);
+    let arrays = Ledger::open(&runs.join("slurm")).unwrap().arrays().unwrap();
+    assert_eq!(
+        arrays.iter().map(|a| a.hashes.len()).sum::<usize>(),
+        3,
+        "three passes"
+    );
+}
+
 /// A copy of the shipped study whose quick mode makes `pods` pods of 3 spheres, in `dir`.
 fn small_pile_study(dir: &Path, pods: u32) -> PathBuf {
     let text = std::fs::read_to_string(Path::new(ROOT).join(STUDY)).unwrap();
@@ -346,7 +384,10 @@ fn a_killed_driver_resumes_without_running_any_run_twice() {
         still_queued.len()
     );
 
-    let mut again = calibrate(&out, &flags).spawn().unwrap();
+    let mut again = calibrate(&out, &flags)
+        .stdout(Stdio::null())
+        .spawn()
+        .unwrap();
     assert!(wait(&mut again).success());
     assert_eq!(std::fs::read(out.join("calibration.json")).unwrap(), local);
 

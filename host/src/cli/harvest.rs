@@ -22,10 +22,15 @@ use arachis_core::prelude::*;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
+use crate::calibration::BatchRun;
+use crate::cluster::recipe::HarvestRecipe;
+use crate::cluster::RigRecipe;
 use crate::harvest::{
-    run_harvest, HarvestConfig, HarvestOutcome, Machine, Progress, SEED001_FIELD_LOSS_PERCENT,
+    assemble, plan_passes, run_harvest, HarvestConfig, HarvestOutcome, Machine, Progress,
+    SEED001_FIELD_LOSS_PERCENT,
 };
 use crate::io::write_atomic;
+use crate::rigs::harvest_pass::{self, layout_condition, pass_result, HarvestPassRig};
 use crate::stats::relative_error_percent;
 use crate::vtk::write_series;
 
@@ -89,6 +94,9 @@ pub struct Args {
     /// Also write the JSON report to FILE.
     #[arg(long, value_name = "FILE")]
     pub output: Option<PathBuf>,
+    /// Where the passes run, and the run cache that keeps them.
+    #[command(flatten)]
+    pub runs: super::runs_args::RunsArgs,
 }
 
 /// The t-test block of the report.
@@ -183,12 +191,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         Progress::Stepped(n) => bar.inc(n),
     };
     let started = Instant::now();
-    let outcome = if args.f64 {
-        run_harvest::<f64>(&config, &model, &progress)
-    } else {
-        run_harvest::<Fx>(&config, &model, &progress)
-    }
-    .context("the harvest simulation failed")?;
+    let outcome = match passes_executor(&args, &config.machine)? {
+        Some((executor, rig)) => run_through(&executor, &rig, &config)?,
+        None => if args.f64 {
+            run_harvest::<f64>(&config, &model, &progress)
+        } else {
+            run_harvest::<Fx>(&config, &model, &progress)
+        }
+        .context("the harvest simulation failed")?,
+    };
     let wall_seconds = started.elapsed().as_secs_f64();
     bar.finish_and_clear();
     if let Some(dir) = &args.vtk {
@@ -214,6 +225,63 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     println!("{json}");
     Ok(())
+}
+
+/// The executor and pass rig `--runs` or `--executor slurm` ask for, if any.
+fn passes_executor(
+    args: &Args,
+    machine: &Machine,
+) -> anyhow::Result<Option<(crate::calibration::Executor, HarvestPassRig)>> {
+    if !args.runs.wanted() {
+        return Ok(None);
+    }
+    anyhow::ensure!(
+        args.vtk.is_none(),
+        "--vtk: frames come from passes run here without a run cache; drop --runs and \
+         --executor slurm to write them"
+    );
+    let harvest = HarvestRecipe {
+        topology: args
+            .topology
+            .as_deref()
+            .map(std::path::absolute)
+            .transpose()?,
+        machine: *machine,
+        f64: args.f64,
+    };
+    let rig = harvest.build()?;
+    let executor = args
+        .runs
+        .executor("harvest", || Ok(RigRecipe::for_harvest(harvest)))?
+        .expect("an executor was asked for");
+    Ok(Some((executor, rig)))
+}
+
+/// The harvest with its passes run (or replayed) by `executor`.
+fn run_through(
+    executor: &crate::calibration::Executor,
+    rig: &HarvestPassRig,
+    config: &HarvestConfig,
+) -> anyhow::Result<HarvestOutcome> {
+    let passes = plan_passes(config)?;
+    let conditions: Vec<_> = passes.iter().map(|p| layout_condition(&p.layout)).collect();
+    let batch: Vec<BatchRun<'_>> = conditions
+        .iter()
+        .map(|condition| BatchRun {
+            rig,
+            experiment: harvest_pass::NAME,
+            quantity: harvest_pass::QUANTITY,
+            values: Default::default(),
+            condition,
+            replicate: 0,
+        })
+        .collect();
+    let results = executor
+        .run_requests("harvest", &batch)?
+        .iter()
+        .map(|run| pass_result(&run.responses))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(assemble(config, &passes, results)?)
 }
 
 fn write_frames(

@@ -27,20 +27,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 /// The plant generated from the topology at `path` (the shipped small plant when `None`);
 /// every error names the file.
 pub(crate) fn load_plant(path: Option<&Path>) -> anyhow::Result<PlantModel> {
-    let name = path.map_or_else(
-        || {
-            format!(
-                "the shipped topology ({})",
-                crate::plant::SHIPPED_TOPOLOGY_FILE
-            )
-        },
-        |p| p.display().to_string(),
-    );
-    let text = match path {
-        Some(p) => crate::io::text::read_text(p)
-            .with_context(|| format!("cannot read the topology {name}"))?,
-        None => crate::plant::SHIPPED_TOPOLOGY.to_owned(),
-    };
+    let (text, name) = crate::plant::topology_text(path).with_context(|| {
+        format!(
+            "cannot read the topology {}",
+            path.map_or(String::new(), |p| p.display().to_string())
+        )
+    })?;
     let topology =
         Topology::from_toml(&text).with_context(|| format!("{name}: bad plant topology"))?;
     generate(&topology).with_context(|| format!("{name}: cannot generate the plant"))

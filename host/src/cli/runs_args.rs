@@ -1,5 +1,5 @@
-//! The flags `compare`, `diagnose` and `fit` share for where their simulations run: a run
-//! cache to store and replay them (`--runs DIR`), and the cluster settings
+//! The flags `compare`, `diagnose`, `fit` and `harvest` share for where their simulations
+//! run: a run cache to store and replay them (`--runs DIR`), and the cluster settings
 //! ([`ClusterArgs`]). Without either, simulations run on this machine's threads and nothing
 //! is stored, as before.
 
@@ -16,8 +16,8 @@ use crate::study::Study;
 #[derive(Debug, Clone, clap::Args)]
 pub struct RunsArgs {
     /// Store every simulation in this run cache and replay those already there (default with
-    /// `--executor slurm`: `runs-STUDYNAME/`, which also keeps the cluster's records in
-    /// `runs-STUDYNAME/slurm/`).
+    /// `--executor slurm`: `runs-NAME/`, NAME the study's or `harvest`, which also keeps the
+    /// cluster's records in its `slurm/`).
     #[arg(long, value_name = "DIR")]
     pub runs: Option<PathBuf>,
     /// Where the simulations run (this machine or a Slurm cluster).
@@ -26,26 +26,44 @@ pub struct RunsArgs {
 }
 
 impl RunsArgs {
-    /// `model` with its simulations run as these flags say.
-    pub fn attach<'a>(&self, model: Model<'a>, study: &Study) -> anyhow::Result<Model<'a>> {
-        let slurm = self.cluster.executor == ExecutorKind::Slurm;
-        let Some(runs) = self
+    /// Whether these flags ask for an executor (a run cache or a cluster).
+    pub fn wanted(&self) -> bool {
+        self.runs.is_some() || self.cluster.executor == ExecutorKind::Slurm
+    }
+
+    /// The executor these flags ask for (`None`: neither a run cache nor a cluster), its
+    /// cache in `--runs` or `runs-NAME/`; `recipe` rebuilds its rigs on the cluster.
+    pub fn executor(
+        &self,
+        name: &str,
+        recipe: impl FnOnce() -> anyhow::Result<RigRecipe>,
+    ) -> anyhow::Result<Option<Executor>> {
+        if !self.wanted() {
+            return Ok(None);
+        }
+        let runs = self
             .runs
             .clone()
-            .or_else(|| slurm.then(|| PathBuf::from(format!("runs-{}", study.name()))))
-        else {
-            return Ok(model);
-        };
-        let mut executor = Executor::new(None, Some(&runs), Progress::new(false))?;
-        if slurm {
-            let recipe = RigRecipe::new(study.path(), Simulator::Dem, study.plan_mode()?)
-                .with_context(|| {
-                    format!("{}: cannot make the path absolute", study.path().display())
-                })?;
-            let records = Path::new(&runs).join(crate::cluster::SLURM_DIR);
-            let remote = SlurmExecutor::new(recipe, &self.cluster, &records, false)?;
-            executor = executor.with_remote(Box::new(remote))?;
+            .unwrap_or_else(|| PathBuf::from(format!("runs-{name}")));
+        let executor = Executor::new(None, Some(&runs), Progress::new(false))?;
+        if self.cluster.executor == ExecutorKind::Local {
+            return Ok(Some(executor));
         }
-        Ok(model.with_executor(executor))
+        let records = Path::new(&runs).join(crate::cluster::SLURM_DIR);
+        let remote = SlurmExecutor::new(recipe()?, &self.cluster, &records, false)?;
+        Ok(Some(executor.with_remote(Box::new(remote))?))
+    }
+
+    /// `model` with its simulations run as these flags say.
+    pub fn attach<'a>(&self, model: Model<'a>, study: &Study) -> anyhow::Result<Model<'a>> {
+        let recipe = || {
+            RigRecipe::new(study.path(), Simulator::Dem, study.plan_mode()?).with_context(|| {
+                format!("{}: cannot make the path absolute", study.path().display())
+            })
+        };
+        Ok(match self.executor(study.name(), recipe)? {
+            Some(executor) => model.with_executor(executor),
+            None => model,
+        })
     }
 }

@@ -15,9 +15,12 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
+use anyhow::Context;
 use serde::{Deserialize, Serialize};
 
 use crate::calibration::{Rig, RigError};
+use crate::harvest::Machine;
+use crate::rigs::harvest_pass::HarvestPassRig;
 use crate::rigs::kind::RigOptions;
 use crate::rigs::pod_bench::PodBenchRig;
 use crate::rigs::pod_world::{Experiment, ModeName};
@@ -44,6 +47,26 @@ pub struct ShippedPull {
     pub angle_deg: f64,
 }
 
+/// The harvest's pass rig, as `arachis harvest` set it up.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct HarvestRecipe {
+    /// The plant topology file, absolute (`None`: the shipped small plant).
+    pub topology: Option<PathBuf>,
+    /// The machine.
+    pub machine: Machine,
+    /// Whether the passes step in f64 (else fixed point).
+    pub f64: bool,
+}
+
+impl HarvestRecipe {
+    /// The pass rig.
+    pub fn build(&self) -> anyhow::Result<HarvestPassRig> {
+        let (text, name) = crate::plant::topology_text(self.topology.as_deref())
+            .with_context(|| format!("cannot read the topology {:?}", self.topology))?;
+        HarvestPassRig::new(&text, self.machine, self.f64).with_context(|| name)
+    }
+}
+
 /// Everything besides a run's values that decides which rig simulates it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RigRecipe {
@@ -54,6 +77,10 @@ pub struct RigRecipe {
     /// the pull its flags chose: the worker builds that study, not the file.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shipped_pull_off: Option<ShippedPull>,
+    /// Set for the passes of `arachis harvest`, which have no study (`study` is then
+    /// empty): the worker builds this pass rig.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub harvest: Option<HarvestRecipe>,
     /// The simulator.
     pub simulator: Simulator,
     /// The run mode of a pod rig (`quick`, `full`), if the study has modes.
@@ -77,6 +104,7 @@ impl RigRecipe {
         Ok(Self {
             study: std::path::absolute(study)?,
             shipped_pull_off: None,
+            harvest: None,
             simulator,
             mode: mode.map(|m| m.as_str().to_owned()),
             allow_extreme: crate::plausible::extreme_allowed(),
@@ -94,6 +122,19 @@ impl RigRecipe {
             }
             None => Study::load(&self.study)?,
         })
+    }
+
+    /// The recipe of `arachis harvest`'s passes.
+    pub fn for_harvest(harvest: HarvestRecipe) -> Self {
+        Self {
+            study: PathBuf::new(),
+            shipped_pull_off: None,
+            harvest: Some(harvest),
+            simulator: Simulator::Dem,
+            mode: None,
+            allow_extreme: crate::plausible::extreme_allowed(),
+            surrogate_delay_ms: 0,
+        }
     }
 
     /// The run mode, parsed.

@@ -102,6 +102,7 @@ mod tests {
         let recipe = RigRecipe {
             study: "/data/study.toml".into(),
             shipped_pull_off: None,
+            harvest: None,
             simulator: Simulator::Dem,
             mode: Some("quick".into()),
             allow_extreme: false,

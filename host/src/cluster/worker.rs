@@ -59,8 +59,18 @@ pub struct Done {
 pub fn run_task(task: &RunTask, cache_dir: &Path) -> anyhow::Result<Done> {
     let started = Instant::now();
     crate::plausible::allow_extreme(task.recipe.allow_extreme);
-    let study = task.recipe.load_study()?;
-    let rig = task.recipe.build(&study, &task.experiment)?;
+    let (study, pass, boxed);
+    let rig: &dyn crate::calibration::Rig = match &task.recipe.harvest {
+        Some(harvest) => {
+            pass = harvest.build()?;
+            &pass
+        }
+        None => {
+            study = task.recipe.load_study()?;
+            boxed = task.recipe.build(&study, &task.experiment)?;
+            boxed.as_ref()
+        }
+    };
     let request = RunRequest {
         values: &task.values,
         condition: &task.condition,

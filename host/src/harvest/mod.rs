@@ -142,6 +142,41 @@ pub fn run_harvest<S: arachis_core::num::Scalar>(
     model: &PlantModel,
     progress: &(dyn Fn(Progress) + Sync),
 ) -> Result<HarvestOutcome, HarvestError> {
+    let passes = plan_passes(config)?;
+    // The passes share the cores: each steps on its share of the threads.
+    let in_flight = rayon::current_num_threads().min(passes.len()).max(1);
+    let threads_per_pass = (crate::stepping::default_threads() / in_flight).max(1);
+    let results: Vec<PassResult> = passes
+        .par_iter()
+        .map(|pass| {
+            crate::stepping::with_threads(threads_per_pass, || {
+                run_pass::<S>(
+                    &config.machine,
+                    model,
+                    &pass.layout,
+                    config.frame_every,
+                    progress,
+                )
+            })
+        })
+        .collect::<Result<_, _>>()?;
+    assemble(config, &passes, results)
+}
+
+/// One plant pass of a harvest: its replicate, that replicate's seed and the plant's layout.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlannedPass {
+    /// Replicate index.
+    pub replicate: usize,
+    /// The replicate's seed.
+    pub seed: u64,
+    /// The plant's layout.
+    pub layout: PlantLayout,
+}
+
+/// Every pass of `config`, replicate by replicate (replicate r draws its plants' layouts
+/// from the seed + r), after checking the configuration.
+pub fn plan_passes(config: &HarvestConfig) -> Result<Vec<PlannedPass>, HarvestError> {
     config.machine.check()?;
     if config.plants == 0 {
         return Err(HarvestError::BadParameter {
@@ -171,25 +206,28 @@ pub fn run_harvest<S: arachis_core::num::Scalar>(
             why: "must be at least 1".to_owned(),
         });
     }
-    let mut jobs = Vec::new();
+    let mut passes = Vec::new();
     for r in 0..config.replicates {
         let seed = config.seed.wrapping_add(u64::from(r));
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         for _ in 0..config.plants {
-            jobs.push((r as usize, seed, PlantLayout::draw(&mut rng)));
+            passes.push(PlannedPass {
+                replicate: r as usize,
+                seed,
+                layout: PlantLayout::draw(&mut rng),
+            });
         }
     }
-    // The passes share the cores: each steps on its share of the threads.
-    let in_flight = rayon::current_num_threads().min(jobs.len()).max(1);
-    let threads_per_pass = (crate::stepping::default_threads() / in_flight).max(1);
-    let results: Vec<PassResult> = jobs
-        .par_iter()
-        .map(|(_, _, layout)| {
-            crate::stepping::with_threads(threads_per_pass, || {
-                run_pass::<S>(&config.machine, model, layout, config.frame_every, progress)
-            })
-        })
-        .collect::<Result<_, _>>()?;
+    Ok(passes)
+}
+
+/// The harvest's outcome from the results of its `passes` (as [`plan_passes`] gave them,
+/// wherever they were simulated).
+pub fn assemble(
+    config: &HarvestConfig,
+    passes: &[PlannedPass],
+    results: Vec<PassResult>,
+) -> Result<HarvestOutcome, HarvestError> {
     let mut replicates: Vec<Replicate> = (0..config.replicates)
         .map(|r| Replicate {
             seed: config.seed.wrapping_add(u64::from(r)),
@@ -205,14 +243,14 @@ pub fn run_harvest<S: arachis_core::num::Scalar>(
     let mut dt_s = 0.0;
     let mut pass_steps = 0;
     let mut frames = Vec::new();
-    for ((r, _, layout), res) in jobs.iter().zip(results) {
-        let rep = &mut replicates[*r];
+    for (pass, res) in passes.iter().zip(results) {
+        let rep = &mut replicates[pass.replicate];
         for &f in &res.fates {
             rep.tally.add(f);
         }
         rep.junction_breaks += res.junction_breaks;
         rep.bond_breaks += res.bond_breaks;
-        rep.layouts.push(*layout);
+        rep.layouts.push(pass.layout);
         rep.digests.push(format!("{:016x}", res.digest));
         steps += res.steps;
         dt_s = res.dt_s;

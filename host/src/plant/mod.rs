@@ -31,3 +31,15 @@ pub const SHIPPED_TOPOLOGY: &str =
     include_str!("../../../testdata/peanut-plant/topology-small.toml");
 /// Its file name, as the shipped plant study names it.
 pub const SHIPPED_TOPOLOGY_FILE: &str = "topology-small.toml";
+
+/// The text of the topology at `path` (the shipped small plant when `None`), and the name
+/// messages give it.
+pub fn topology_text(path: Option<&std::path::Path>) -> std::io::Result<(String, String)> {
+    Ok(match path {
+        Some(p) => (crate::io::text::read_text(p)?, p.display().to_string()),
+        None => (
+            SHIPPED_TOPOLOGY.to_owned(),
+            format!("the shipped topology ({SHIPPED_TOPOLOGY_FILE})"),
+        ),
+    })
+}

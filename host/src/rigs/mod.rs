@@ -24,6 +24,7 @@ pub mod compression;
 pub mod conformance;
 pub mod fall;
 pub mod harvest;
+pub mod harvest_pass;
 pub mod incline;
 pub mod kind;
 pub mod parameter;
