@@ -5,7 +5,7 @@
 use std::process::Output;
 
 mod cli_support;
-use cli_support::arachis_at_root as arachis;
+use cli_support::{arachis_at_root as arachis, file_stamps};
 
 fn ok(out: &Output) -> String {
     assert!(
@@ -215,21 +215,10 @@ fn a_run_cache_gives_the_same_report_and_is_replayed() {
         let stored = std::fs::read_dir(runs).unwrap().count();
         assert!(stored > 1, "{command}: {stored} stored runs");
         // Replayed, not simulated again: no stored run is rewritten.
-        let stamp = |p: &str| -> Vec<_> {
-            let mut v: Vec<_> = std::fs::read_dir(p)
-                .unwrap()
-                .map(|e| {
-                    let e = e.unwrap();
-                    (e.file_name(), e.metadata().unwrap().modified().unwrap())
-                })
-                .collect();
-            v.sort();
-            v
-        };
-        let before = stamp(runs);
+        let before = file_stamps(runs.as_ref());
         let replayed = ok(&arachis(&[command, MEASURED, "--runs", runs]));
         assert_eq!(
-            stamp(runs),
+            file_stamps(runs.as_ref()),
             before,
             "{command}: the cache was written again"
         );

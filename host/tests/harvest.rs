@@ -14,7 +14,7 @@ use serde_json::Value;
 use statrs::distribution::{ContinuousCDF, StudentsT};
 
 mod cli_support;
-use cli_support::arachis;
+use cli_support::{arachis, file_stamps};
 
 const SMALL: &str = include_str!("../../testdata/peanut-plant/topology-small.toml");
 /// Tolerance of t and p against the independent calculation (both are f64 sums of 8 values).
@@ -38,6 +38,19 @@ fn cheap_machine() -> Machine {
 }
 
 fn quiet(_: Progress) {}
+
+/// One plant, two replicates, a short drum: a command of about a second.
+const SMALL_HARVEST: [&str; 9] = [
+    "harvest",
+    "--plants",
+    "1",
+    "--replicates",
+    "2",
+    "--drum-length",
+    "0.02",
+    "--forward-speed",
+    "2",
+];
 
 #[test]
 fn every_pod_is_counted_once_and_the_t_test_matches_an_independent_calculation() {
@@ -252,19 +265,8 @@ fn cli_runs_with_vtk_frames_and_reports_loss_and_t_test() {
     let dir = tempfile::tempdir().unwrap();
     let vtk = dir.path().join("vtk");
     let report = dir.path().join("report.json");
-    // One plant, two replicates, a short drum: a run of about a second.
     let small = |extra: &[&str]| {
-        let mut args = vec![
-            "harvest",
-            "--plants",
-            "1",
-            "--replicates",
-            "2",
-            "--drum-length",
-            "0.02",
-            "--forward-speed",
-            "2",
-        ];
+        let mut args = SMALL_HARVEST.to_vec();
         args.extend_from_slice(extra);
         arachis(&args)
     };
@@ -339,19 +341,8 @@ fn a_run_cache_keeps_the_passes_and_gives_the_same_report() {
     let runs = dir.path().join("runs");
     let harvest = |report: &str, extra: &[&str]| {
         let path = dir.path().join(report);
-        let mut args = vec![
-            "harvest",
-            "--plants",
-            "1",
-            "--replicates",
-            "2",
-            "--drum-length",
-            "0.02",
-            "--forward-speed",
-            "2",
-            "--output",
-            path.to_str().unwrap(),
-        ];
+        let mut args = SMALL_HARVEST.to_vec();
+        args.extend_from_slice(&["--output", path.to_str().unwrap()]);
         args.extend_from_slice(extra);
         let out = arachis(&args);
         assert!(
@@ -364,21 +355,14 @@ fn a_run_cache_keeps_the_passes_and_gives_the_same_report() {
     let plain = harvest("plain.json", &[]);
     let cache = ["--runs", runs.to_str().unwrap()];
     assert_eq!(harvest("filled.json", &cache), plain);
-    let stamps = || -> Vec<_> {
-        let mut v: Vec<_> = std::fs::read_dir(&runs)
-            .unwrap()
-            .map(|e| {
-                let e = e.unwrap();
-                (e.file_name(), e.metadata().unwrap().modified().unwrap())
-            })
-            .collect();
-        v.sort();
-        v
-    };
-    let before = stamps();
+    let before = file_stamps(&runs);
     assert_eq!(before.len(), 2, "one stored run per pass");
     assert_eq!(harvest("replayed.json", &cache), plain);
-    assert_eq!(stamps(), before, "a stored pass was simulated again");
+    assert_eq!(
+        file_stamps(&runs),
+        before,
+        "a stored pass was simulated again"
+    );
 
     let vtk = dir.path().join("vtk");
     let out = arachis(&[

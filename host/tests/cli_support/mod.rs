@@ -22,3 +22,17 @@ pub fn arachis_at_root(args: &[&str]) -> Output {
         .output()
         .expect("cannot start the arachis binary")
 }
+
+/// Each file of `dir` with its modification time, sorted by name: equal before and after a
+/// command when the command rewrote nothing there.
+pub fn file_stamps(dir: &std::path::Path) -> Vec<(std::ffi::OsString, std::time::SystemTime)> {
+    let mut v: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| {
+            let e = e.unwrap();
+            (e.file_name(), e.metadata().unwrap().modified().unwrap())
+        })
+        .collect();
+    v.sort();
+    v
+}
