@@ -1,5 +1,6 @@
-//! Campaigns that outgrow one machine (issue 21): the runs of a calibration executed as
-//! Slurm job arrays, with the same bytes as a local run.
+//! Campaigns that outgrow one machine (issue 21): the runs of a calibration, a diagnosis
+//! (`compare`, `diagnose`, `fit`) or a harvest executed as Slurm job arrays, with the same
+//! bytes as a local run.
 //!
 //! Every run of a campaign is named by the hash of its specification and stored in the run
 //! cache, which is exactly the unit a job array wants:

@@ -1,6 +1,7 @@
-//! How to build a campaign's rig anywhere: the study file, the simulator and the run mode,
-//! the same on the machine that plans the campaign and on every cluster node that runs a
-//! piece of it. A [`RigRecipe`] is what a worker task carries instead of the rig itself.
+//! How to build a campaign's rig anywhere: the study file, the simulator and the run mode
+//! (or, for the passes of `arachis harvest`, the topology, machine and scalar,
+//! [`HarvestRecipe`]), the same on the machine that plans the campaign and on every cluster
+//! node that runs a piece of it. A [`RigRecipe`] is what a worker task carries instead of the rig itself.
 //!
 //! ```no_run
 //! use arachis::cluster::{RigRecipe, Simulator};
