@@ -117,7 +117,7 @@ pub struct RemoteRun<'a> {
     pub spec_hash: SpecHash,
     /// The specification itself.
     pub spec: &'a serde_json::Value,
-    /// The rig's [`Rig::id`](super::Rig::id), stored with the run.
+    /// The rig's [`Rig::id`], stored with the run.
     pub rig_id: &'a str,
     /// The study experiment whose rig runs it ([`Objective::experiment`]).
     pub experiment: &'a str,
