@@ -207,22 +207,32 @@ fn bad_input_is_a_clear_error() {
 fn a_run_cache_gives_the_same_report_and_is_replayed() {
     const MEASURED: &str = "testdata/diagnosis-tutorial/measured.toml";
     let dir = tempfile::tempdir().unwrap();
-    for command in ["compare", "diagnose"] {
-        let runs = dir.path().join(command);
+    for command in [
+        &["compare"][..],
+        &["diagnose"],
+        &["fit", "--with", "viscoelastic"],
+    ] {
+        let runs = dir.path().join(command[0]);
         let runs = runs.to_str().unwrap();
-        let plain = ok(&arachis(&[command, MEASURED]));
-        let filled = ok(&arachis(&[command, MEASURED, "--runs", runs]));
+        let with = |extra: &[&str]| {
+            let mut args = vec![command[0], MEASURED];
+            args.extend_from_slice(&command[1..]);
+            args.extend_from_slice(extra);
+            ok(&arachis(&args))
+        };
+        let plain = with(&[]);
+        let filled = with(&["--runs", runs]);
         let stored = std::fs::read_dir(runs).unwrap().count();
-        assert!(stored > 1, "{command}: {stored} stored runs");
+        assert!(stored > 1, "{command:?}: {stored} stored runs");
         // Replayed, not simulated again: no stored run is rewritten.
         let before = file_stamps(runs.as_ref());
-        let replayed = ok(&arachis(&[command, MEASURED, "--runs", runs]));
+        let replayed = with(&["--runs", runs]);
         assert_eq!(
             file_stamps(runs.as_ref()),
             before,
-            "{command}: the cache was written again"
+            "{command:?}: the cache was written again"
         );
-        assert_eq!(filled, plain, "{command}");
-        assert_eq!(replayed, plain, "{command}");
+        assert_eq!(filled, plain, "{command:?}");
+        assert_eq!(replayed, plain, "{command:?}");
     }
 }
