@@ -17,7 +17,7 @@ use anyhow::{bail, ensure, Context};
 
 use crate::calibration::{calibrate, Executor, Outcome, Problem, Progress};
 use crate::cluster::recipe::ShippedPull;
-use crate::cluster::{ClusterArgs, ExecutorKind, RigRecipe, SlurmExecutor};
+use crate::cluster::{on_cluster_if_chosen, ClusterArgs, RigRecipe};
 use crate::report::{pull_off, write_calibration, Provenance};
 use crate::rigs::pod_world::ModeName;
 use crate::rigs::pull_off::PullOffRig;
@@ -98,18 +98,13 @@ impl Args {
             Some(&out.join(crate::calibration::RUNS_DIR)),
             Progress::new(self.quiet),
         )?;
-        Ok(match self.cluster.executor {
-            ExecutorKind::Local => local,
-            ExecutorKind::Slurm => {
-                let slurm = SlurmExecutor::new(
-                    recipe,
-                    &self.cluster,
-                    &out.join(crate::cluster::SLURM_DIR),
-                    self.quiet,
-                )?;
-                local.with_remote(Box::new(slurm))?
-            }
-        })
+        on_cluster_if_chosen(
+            local,
+            &self.cluster,
+            || Ok(recipe),
+            &out.join(crate::cluster::SLURM_DIR),
+            self.quiet,
+        )
     }
 }
 

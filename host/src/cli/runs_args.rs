@@ -3,12 +3,12 @@
 //! ([`ClusterArgs`]). Without either, simulations run on this machine's threads and nothing
 //! is stored, as before.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::Context;
 
 use crate::calibration::{Executor, Progress};
-use crate::cluster::{ClusterArgs, ExecutorKind, RigRecipe, Simulator, SlurmExecutor};
+use crate::cluster::{on_cluster_if_chosen, ClusterArgs, ExecutorKind, RigRecipe, Simulator};
 use crate::diagnose::model::Model;
 use crate::study::Study;
 
@@ -46,12 +46,8 @@ impl RunsArgs {
             .clone()
             .unwrap_or_else(|| PathBuf::from(format!("runs-{name}")));
         let executor = Executor::new(None, Some(&runs), Progress::new(false))?;
-        if self.cluster.executor == ExecutorKind::Local {
-            return Ok(Some(executor));
-        }
-        let records = Path::new(&runs).join(crate::cluster::SLURM_DIR);
-        let remote = SlurmExecutor::new(recipe()?, &self.cluster, &records, false)?;
-        Ok(Some(executor.with_remote(Box::new(remote))?))
+        let records = runs.join(crate::cluster::SLURM_DIR);
+        on_cluster_if_chosen(executor, &self.cluster, recipe, &records, false).map(Some)
     }
 
     /// `model` with its simulations run as these flags say.

@@ -34,7 +34,7 @@ pub mod worker;
 
 pub use recipe::{RigRecipe, Simulator};
 pub use settings::{ClusterArgs, ExecutorKind};
-pub use slurm::SlurmExecutor;
+pub use slurm::{on_cluster_if_chosen, SlurmExecutor};
 pub use task::RunTask;
 
 /// Folder of a campaign's Slurm records inside its output folder, beside `runs/`.

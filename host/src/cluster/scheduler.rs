@@ -90,7 +90,7 @@ fn parse_queue(text: &str, prefix: &str) -> Vec<QueuedTask> {
             let mut f = line.split_whitespace();
             let (job, index, name) = (f.next()?, f.next()?, f.next()?);
             Some(QueuedTask {
-                name: name.strip_prefix(prefix).map(|_| name.to_owned())?,
+                name: name.starts_with(prefix).then(|| name.to_owned())?,
                 job: job.parse().ok()?,
                 index: index.parse().ok()?,
             })

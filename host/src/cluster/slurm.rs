@@ -28,13 +28,13 @@ use std::path::{Path, PathBuf};
 
 use indicatif::ProgressBar;
 
-use super::ledger::{attempts, Ledger};
+use super::ledger::{attempts, ArrayRecord, Ledger};
 use super::recipe::RigRecipe;
 use super::scheduler::{queued_tasks, Submission};
-use super::settings::{ClusterArgs, DEFAULT_TIME_PER_RUN_MIN};
+use super::settings::{ClusterArgs, ExecutorKind, DEFAULT_TIME_PER_RUN_MIN};
 use super::task::RunTask;
 use crate::calibration::run_cache::RunCache;
-use crate::calibration::{CalibrateError, Remote, RemoteRun};
+use crate::calibration::{CalibrateError, Executor, Remote, RemoteRun};
 
 /// Runs a campaign's stages on Slurm (module docs).
 pub struct SlurmExecutor {
@@ -142,10 +142,9 @@ impl SlurmExecutor {
         })
     }
 
-    /// The spec hashes of this campaign's tasks still in the queue.
-    fn in_flight(&self) -> anyhow::Result<BTreeSet<String>> {
+    /// The spec hashes of this campaign's tasks (the arrays `arrays`) still in the queue.
+    fn in_flight(&self, arrays: &[ArrayRecord]) -> anyhow::Result<BTreeSet<String>> {
         let queued = queued_tasks(&self.ledger.job_prefix()).map_err(anyhow::Error::msg)?;
-        let arrays = self.ledger.arrays()?;
         Ok(queued
             .iter()
             .filter_map(|q| {
@@ -154,6 +153,24 @@ impl SlurmExecutor {
             })
             .collect())
     }
+}
+
+/// `executor` with its missing runs sent to Slurm when `settings` choose it (records in
+/// `records`, rigs rebuilt by `recipe`), else `executor` as it is.
+pub fn on_cluster_if_chosen(
+    executor: Executor,
+    settings: &ClusterArgs,
+    recipe: impl FnOnce() -> anyhow::Result<RigRecipe>,
+    records: &Path,
+    quiet: bool,
+) -> anyhow::Result<Executor> {
+    Ok(match settings.executor {
+        ExecutorKind::Local => executor,
+        ExecutorKind::Slurm => {
+            let slurm = SlurmExecutor::new(recipe()?, settings, records, quiet)?;
+            executor.with_remote(Box::new(slurm))?
+        }
+    })
 }
 
 /// A measured run's time limit is this many times its wall time: runs of one campaign
@@ -209,23 +226,22 @@ impl Remote for SlurmExecutor {
                 .map_err(io)?;
         }
         let start = bar.position();
+        // A run once found stored stays stored: only the others are looked up again.
+        let mut pending: Vec<&RemoteRun<'_>> = runs.iter().collect();
         loop {
-            let pending: Vec<&RemoteRun<'_>> = runs
-                .iter()
-                .filter(|r| {
-                    cache
-                        .load(r.spec, r.spec_hash, r.rig_id, r.quantity)
-                        .is_none()
-                })
-                .collect();
+            pending.retain(|r| {
+                cache
+                    .load(r.spec, r.spec_hash, r.rig_id, r.quantity)
+                    .is_none()
+            });
             bar.set_position(start + (runs.len() - pending.len()) as u64);
             let Some(stage) = pending.first().map(|r| r.stage) else {
                 return Ok(());
             };
-            let flying = self.in_flight().map_err(io)?;
             let arrays = self.ledger.arrays().map_err(io)?;
+            let flying = self.in_flight(&arrays).map_err(io)?;
             let mut submit = Vec::new();
-            for r in pending {
+            for r in &pending {
                 let hash = r.spec_hash.to_string();
                 if flying.contains(&hash) {
                     continue;
