@@ -32,6 +32,9 @@ pub enum Limits {
     NonNegative,
     /// A fraction in [0, 1].
     Fraction,
+    /// A fraction in [0, 1): the plastic fraction λ of the hysteretic contact, where λ = 1
+    /// would leave no elastic unloading.
+    FractionBelowOne,
     /// A probability strictly between 0 and 1 (a significance level).
     Probability,
 }
@@ -48,8 +51,34 @@ impl Limits {
             Self::Friction | Self::NonNegative => Some(value.max(0.0)),
             Self::Restitution if value > 1.0 => Some(1.0),
             Self::Fraction => Some(value.clamp(0.0, 1.0)),
+            Self::FractionBelowOne if value < 0.0 => Some(0.0),
             _ => None,
         }
+    }
+
+    /// The lower and upper ends of the admissible set (±∞ where it is unbounded), each with
+    /// whether the end itself is admissible: e ∈ (0, 1] gives (0, open) and (1, closed).
+    pub fn ends(self) -> (End, End) {
+        let (lo, lo_closed, hi, hi_closed) = match self {
+            Self::Restitution => (0.0, false, 1.0, true),
+            Self::Friction | Self::NonNegative => (0.0, true, f64::INFINITY, false),
+            Self::Poisson => (-1.0, false, 0.5, false),
+            Self::PoissonContactModel => (-1.0, false, 1.0, false),
+            Self::Positive => (0.0, false, f64::INFINITY, false),
+            Self::Fraction => (0.0, true, 1.0, true),
+            Self::FractionBelowOne => (0.0, true, 1.0, false),
+            Self::Probability => (0.0, false, 1.0, false),
+        };
+        (
+            End {
+                value: lo,
+                closed: lo_closed,
+            },
+            End {
+                value: hi,
+                closed: hi_closed,
+            },
+        )
     }
 
     /// `Ok` when `value` is finite and admissible, else the reason in words.
@@ -64,6 +93,7 @@ impl Limits {
             Self::PoissonContactModel => value > -1.0 && value < 1.0,
             Self::Positive => value > 0.0,
             Self::Fraction => (0.0..=1.0).contains(&value),
+            Self::FractionBelowOne => (0.0..1.0).contains(&value),
             Self::Probability => value > 0.0 && value < 1.0,
         };
         if ok {
@@ -72,6 +102,15 @@ impl Limits {
             Err(format!("{value} is outside the physical limits: {self}"))
         }
     }
+}
+
+/// One end of an admissible set ([`Limits::ends`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct End {
+    /// Where the set ends (±∞ when it does not).
+    pub value: f64,
+    /// Whether `value` itself is admissible.
+    pub closed: bool,
 }
 
 impl fmt::Display for Limits {
@@ -86,6 +125,7 @@ impl fmt::Display for Limits {
             Self::Positive => "the value must be > 0",
             Self::NonNegative => "the value must be ≥ 0",
             Self::Fraction => "a fraction must lie in [0, 1]",
+            Self::FractionBelowOne => "this fraction must lie in [0, 1)",
             Self::Probability => "a probability must lie in (0, 1)",
         })
     }

@@ -58,6 +58,43 @@ fn loop_finds_and_fits_hidden_drag() {
 }
 
 #[test]
+fn a_restitution_of_one_is_diagnosed_and_reported_on_its_limit() {
+    // A study calibrated at e = 1 (its closed upper limit): the sensitivities step below it,
+    // and a fit whose estimate reaches it says so. Both stopped with "restitution = 1.01 must
+    // be in (0, 1]" before.
+    let dir = tempfile::tempdir().unwrap();
+    let template = dir.path().join("t.toml");
+    let text = std::fs::read_to_string(std::path::Path::new(cli_support::REPO_ROOT).join(TEMPLATE))
+        .unwrap();
+    std::fs::write(
+        &template,
+        text.replace("restitution = 0.5", "restitution = 1.0"),
+    )
+    .unwrap();
+    let m = dir.path().join("m.toml");
+    let m = m.to_str().unwrap();
+    let t = template.to_str().unwrap();
+    ok(&arachis(&[
+        "synth",
+        t,
+        "--hidden",
+        "viscoelastic=2e-5",
+        "--seed",
+        "2",
+        "--out",
+        m,
+    ]));
+    let diag = ok(&arachis(&["diagnose", m]));
+    assert!(diag.contains("1    viscoelastic"), "{diag}");
+    // Seed 2 puts the unconstrained estimate of e above 1.
+    let fit = ok(&arachis(&["fit", m, "--with", "viscoelastic", "--no-loco"]));
+    assert!(
+        fit.contains("restitution      1.00000e0 - at its upper limit; one-sided 95 % interval ["),
+        "{fit}"
+    );
+}
+
+#[test]
 fn tutorial_measurements_regenerate_bit_for_bit() {
     // docs/diagnosis-tutorial.md step 1: the committed file is what synth writes.
     let dir = tempfile::tempdir().unwrap();

@@ -11,7 +11,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 
-use crate::diagnose::fit::compare_with;
+use crate::diagnose::fit::{compare_with, ONE_SIDED_CONFIDENCE};
 use crate::diagnose::model::Model;
 use crate::diagnose::params::value;
 use crate::diagnose::plot::plot_experiment;
@@ -105,14 +105,22 @@ pub fn run(args: Args) -> Result<()> {
             f.iterations
         )?;
         for (k, p) in f.free.iter().enumerate() {
-            writeln!(
-                s,
-                "  {:<16} {:.5e} ± {:.2e} {}",
-                p.name,
-                value(p, &f.params),
-                f.std_errors[k],
-                p.unit
-            )?;
+            let v = value(p, &f.params);
+            match f.one_sided_interval(k) {
+                Some((lo, hi)) => writeln!(
+                    s,
+                    "  {:<16} {v:.5e} {} at its {} limit; one-sided {:.0} % interval [{lo:.5e}, {hi:.5e}]",
+                    p.name,
+                    p.unit,
+                    if Some(lo) == f.on_end[k] { "lower" } else { "upper" },
+                    100.0 * ONE_SIDED_CONFIDENCE
+                )?,
+                None => writeln!(
+                    s,
+                    "  {:<16} {v:.5e} ± {:.2e} {}",
+                    p.name, f.std_errors[k], p.unit
+                )?,
+            }
         }
     }
     writeln!(s, "nested-model test ({} on vs off):", eff.name)?;

@@ -1,8 +1,16 @@
 //! Recalibration with an effect switched on (DESIGN §10 step 3): weighted least squares of the
 //! condition means, Σ((ȳ − ŷ(θ))/SE)², by argmin's Gauss–Newton solver on nalgebra vectors,
 //! with finite-difference Jacobians ([`super::sensitivity::jacobian`]); the parameters are
-//! scaled to order one by their catalogue scale. Effect parameters are evaluated at max(θ, 0)
-//! (an effect cannot be negative).
+//! scaled to order one by their catalogue scale.
+//!
+//! Bounds: every parameter stays in its interval ([`super::params::interval`]: e ∈ (0, 1],
+//! effects ≥ 0). argmin's Gauss–Newton has no bounds, so the fit is projected: the model is
+//! evaluated at the parameters clamped into their intervals, and a parameter that the solver
+//! drives past an end is held on that end while the others are fitted again (an active set,
+//! the loop in [`fit`]; a held parameter is let go when the gradient points back inside).
+//! The exception to "use an optimiser library" is this outer loop only; each inner fit is
+//! argmin's. An estimate on an end is reported as such, with its one-sided interval
+//! ([`FitResult::one_sided_interval`]).
 //!
 //! Reports (see [`Comparison`]): the error before/after, the nested-model test (likelihood
 //! ratio Δ = SSE₀ − SSE₁ ~ χ²₁ with the pure-error σ, and F = Δ/(SSE₁/(N − k₁)) ~ F(1, N − k₁)),
@@ -15,10 +23,10 @@ use anyhow::{anyhow, bail, Context, Result};
 use argmin::core::{CostFunction, Executor, Jacobian, Operator, State};
 use argmin::solver::gaussnewton::GaussNewton;
 use nalgebra::{DMatrix, DVector};
-use statrs::distribution::{ChiSquared, ContinuousCDF, FisherSnedecor};
+use statrs::distribution::{ChiSquared, ContinuousCDF, FisherSnedecor, Normal};
 
 use super::model::Model;
-use super::params::{set, value, ParamInfo, Role};
+use super::params::{interval, set, value, ParamInfo};
 use super::residuals::Dataset;
 use super::score::scale_rows;
 use super::sensitivity::{jacobian, predict};
@@ -33,6 +41,8 @@ const COST_TOLERANCE: f64 = 1e-4;
 /// standardised residuals by at least this much (otherwise the data cannot determine it and
 /// JᵀJ would be singular).
 pub const MIN_BASE_INFLUENCE: f64 = 1.0;
+/// Confidence of the one-sided interval of an estimate on an end of its interval.
+pub const ONE_SIDED_CONFIDENCE: f64 = 0.95;
 
 /// The weighted least-squares problem handed to argmin.
 struct Problem<'a> {
@@ -47,11 +57,8 @@ impl Problem<'_> {
     fn params(&self, u: &DVector<f64>) -> ParameterValues {
         let mut p = self.start.clone();
         for (k, info) in self.free.iter().enumerate() {
-            let mut v = u[k] * info.scale;
-            if info.role == Role::Effect {
-                v = v.max(0.0);
-            }
-            set(info, &mut p, v);
+            let (lo, hi) = interval(info);
+            set(info, &mut p, (u[k] * info.scale).clamp(lo, hi));
         }
         p
     }
@@ -111,9 +118,27 @@ pub struct FitResult {
     pub sse: f64,
     /// Gauss–Newton iterations used.
     pub iterations: u64,
+    /// Per free parameter: the end of its interval the estimate sits on, if any.
+    pub on_end: Vec<Option<f64>>,
 }
 
 impl FitResult {
+    /// For free parameter `k` on an end of its interval: the one-sided interval
+    /// ([`ONE_SIDED_CONFIDENCE`]) from that end inwards, end ∓ z·SE, within the interval;
+    /// `None` for an estimate inside.
+    pub fn one_sided_interval(&self, k: usize) -> Option<(f64, f64)> {
+        let end = self.on_end[k]?;
+        let info = self.free[k];
+        let (lo, hi) = interval(info);
+        let z = Normal::standard().inverse_cdf(ONE_SIDED_CONFIDENCE);
+        let reach = z * self.std_errors[k];
+        Some(if end == hi && end != lo {
+            ((end - reach).max(lo), end)
+        } else {
+            (end, (end + reach).min(hi))
+        })
+    }
+
     /// Number of fitted parameters k.
     pub fn k(&self) -> usize {
         self.free.len()
@@ -178,6 +203,7 @@ pub fn fit(
             predictions,
             sse,
             iterations: 0,
+            on_end: Vec::new(),
         });
     }
     if free.len() >= data.obs.len() {
@@ -187,12 +213,114 @@ pub fn fit(
             data.obs.len()
         );
     }
+    let weights = DVector::from_iterator(data.obs.len(), data.obs.iter().map(|o| 1.0 / o.se_mean));
+    // The active set: parameters held on an end of their interval.
+    let mut held = vec![false; free.len()];
+    let mut at = start.clone();
+    let mut iterations = 0;
+    // Each round holds or lets go at least one parameter; bounded so that it always ends.
+    for _ in 0..=2 * free.len() {
+        let moving: Vec<&'static ParamInfo> = free
+            .iter()
+            .zip(&held)
+            .filter(|(_, h)| !**h)
+            .map(|(i, _)| *i)
+            .collect();
+        let mut changed = false;
+        if !moving.is_empty() {
+            let (params, past_end, its) = gauss_newton(data, model, &at, &moving, &weights)?;
+            iterations += its;
+            at = params;
+            for info in past_end {
+                let k = free
+                    .iter()
+                    .position(|f| f.key == info.key)
+                    .context("lost a parameter")?;
+                held[k] = true;
+                changed = true;
+            }
+        }
+        if !changed {
+            // Let go of a held parameter whose cost falls inwards (gradient Jᵀr pointing in).
+            let problem = Problem {
+                data,
+                model,
+                start: at.clone(),
+                free: free.to_vec(),
+                weights: weights.clone(),
+            };
+            let u =
+                DVector::from_iterator(free.len(), free.iter().map(|i| value(i, &at) / i.scale));
+            let gradient = problem.jacobian(&u)?.transpose() * problem.apply(&u)?;
+            for (k, info) in free.iter().enumerate() {
+                let (lo, hi) = interval(info);
+                let v = value(info, &at);
+                let inwards = (v >= hi && gradient[k] > 0.0) || (v <= lo && gradient[k] < 0.0);
+                if held[k] && inwards && lo < hi {
+                    held[k] = false;
+                    changed = true;
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    let problem = Problem {
+        data,
+        model,
+        start: at.clone(),
+        free: free.to_vec(),
+        weights,
+    };
+    let u = DVector::from_iterator(free.len(), free.iter().map(|i| value(i, &at) / i.scale));
+    let params = problem.params(&u);
+    let predictions = predict(data, model, &params)?;
+    let sse = data.standardised(&predictions).iter().map(|r| r * r).sum();
+    let j = problem.jacobian(&u)?;
+    let cov = (j.transpose() * &j).try_inverse().ok_or_else(|| {
+        anyhow!("the fitted parameters are not determined by the data (singular JᵀJ)")
+    })?;
+    let std_errors = free
+        .iter()
+        .enumerate()
+        .map(|(k, i)| cov[(k, k)].max(0.0).sqrt() * i.scale)
+        .collect();
+    let on_end = free
+        .iter()
+        .map(|info| {
+            let (lo, hi) = interval(info);
+            let v = value(info, &params);
+            [lo, hi].into_iter().find(|&end| v == end)
+        })
+        .collect();
+    Ok(FitResult {
+        params,
+        free: free.to_vec(),
+        std_errors,
+        predictions,
+        sse,
+        iterations,
+        on_end,
+    })
+}
+
+/// One argmin Gauss–Newton fit of `free` from `start`, on the parameters clamped into their
+/// intervals: the fitted values (clamped), the parameters the solver drove past an end of
+/// their interval, and the iterations used.
+fn gauss_newton(
+    data: &Dataset,
+    model: &Model<'_>,
+    start: &ParameterValues,
+    free: &[&'static ParamInfo],
+    weights: &DVector<f64>,
+) -> Result<(ParameterValues, Vec<&'static ParamInfo>, u64)> {
     let problem = Problem {
         data,
         model,
         start: start.clone(),
         free: free.to_vec(),
-        weights: DVector::from_iterator(data.obs.len(), data.obs.iter().map(|o| 1.0 / o.se_mean)),
+        weights: weights.clone(),
     };
     let u0 = DVector::from_iterator(free.len(), free.iter().map(|i| value(i, start) / i.scale));
     let solver = GaussNewton::new().with_tolerance(COST_TOLERANCE)?;
@@ -208,26 +336,17 @@ pub fn fit(
         .cloned()
         .ok_or_else(|| anyhow!("Gauss-Newton returned no parameters"))?;
     let problem = res.problem.problem.as_ref().context("problem lost")?;
-    let params = problem.params(&u);
-    let predictions = predict(data, model, &params)?;
-    let sse = data.standardised(&predictions).iter().map(|r| r * r).sum();
-    let j = problem.jacobian(&u)?;
-    let cov = (j.transpose() * &j).try_inverse().ok_or_else(|| {
-        anyhow!("the fitted parameters are not determined by the data (singular JᵀJ)")
-    })?;
-    let std_errors = free
+    let past_end = free
         .iter()
         .enumerate()
-        .map(|(k, i)| cov[(k, k)].max(0.0).sqrt() * i.scale)
+        .filter(|(k, info)| {
+            let (lo, hi) = interval(info);
+            let raw = u[*k] * info.scale;
+            raw < lo || raw > hi
+        })
+        .map(|(_, info)| *info)
         .collect();
-    Ok(FitResult {
-        params,
-        free: free.to_vec(),
-        std_errors,
-        predictions,
-        sse,
-        iterations,
-    })
+    Ok((problem.params(&u), past_end, iterations))
 }
 
 /// Base-only fit against base + effect fit.

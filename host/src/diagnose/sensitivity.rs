@@ -1,15 +1,17 @@
 //! Model predictions and finite-difference sensitivities ∂ŷ/∂θ at every measured condition
-//! (DESIGN §10 step 2). Base parameters use central differences; an effect at its off value
-//! (0, the lower bound) uses a forward difference, the one-sided derivative that matters for
-//! a parameter that can only grow. Simulations run in parallel or through the model's
+//! (DESIGN §10 step 2). Central differences where both steps stay inside the parameter's
+//! interval ([`super::params::interval`]); within a step of an end, the one-sided difference
+//! away from it: forward for an effect at its off value 0 (the derivative that matters for a
+//! parameter that can only grow), backward for a restitution of 1. No simulation is asked
+//! for at an inadmissible value. Simulations run in parallel or through the model's
 //! executor ([`Model::simulate_all`]); each is deterministic, so the result does not depend
 //! on the thread count or on where it ran.
 
-use anyhow::Result;
+use anyhow::{bail, Result};
 use nalgebra::DMatrix;
 
 use super::model::Model;
-use super::params::{set, value, ParamInfo, Role};
+use super::params::{interval, set, value, ParamInfo, Role};
 use super::residuals::Dataset;
 use crate::calibration::ParameterValues;
 
@@ -34,19 +36,14 @@ pub fn jacobian(
     params: &[&ParamInfo],
 ) -> Result<DMatrix<f64>> {
     let n = data.obs.len();
-    // Per column: the step, and whether the difference is central (else forward from `at`).
-    let columns: Vec<(f64, bool)> = params
+    let columns: Vec<(f64, Difference)> = params
         .iter()
-        .map(|info| {
-            let (h, v) = (info.fd_step, value(info, p));
-            (h, v - h >= 0.0 || info.role == Role::Base)
-        })
-        .collect();
+        .map(|info| Ok((info.fd_step, Difference::at(info, value(info, p))?)))
+        .collect::<Result<_>>()?;
     let mut runs = Vec::new();
-    for (info, &(h, central)) in params.iter().zip(&columns) {
+    for (info, &(h, difference)) in params.iter().zip(&columns) {
         let v = value(info, p);
-        let shifts: &[f64] = if central { &[1.0, -1.0] } else { &[1.0] };
-        for &sign in shifts {
+        for &sign in difference.shifts() {
             let mut shifted = p.clone();
             set(info, &mut shifted, v + sign * h);
             runs.extend(
@@ -59,18 +56,68 @@ pub fn jacobian(
     let y = model.simulate_all(&runs)?;
     let mut cols = Vec::with_capacity(n * params.len());
     let mut k = 0;
-    for &(h, central) in &columns {
-        let up = &y[k..k + n];
-        k += n;
-        if central {
-            let dn = &y[k..k + n];
-            k += n;
-            cols.extend(up.iter().zip(dn).map(|(u, d)| (u - d) / (2.0 * h)));
-        } else {
-            cols.extend(up.iter().zip(at).map(|(u, a)| (u - a) / h));
-        }
+    for &(h, difference) in &columns {
+        let m = difference.shifts().len();
+        let ys: Vec<&[f64]> = (0..m).map(|s| &y[k + s * n..k + (s + 1) * n]).collect();
+        k += m * n;
+        cols.extend((0..n).map(|i| {
+            let at_shifts: Vec<f64> = ys.iter().map(|y| y[i]).collect();
+            difference.derivative(h, &at_shifts, at[i])
+        }));
     }
     Ok(DMatrix::from_column_slice(n, params.len(), &cols))
+}
+
+/// Which finite difference a sensitivity takes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Difference {
+    /// (ŷ(θ + h) − ŷ(θ − h))/2h.
+    Central,
+    /// (ŷ(θ + h) − ŷ(θ))/h.
+    Forward,
+    /// (ŷ(θ) − ŷ(θ − h))/h.
+    Backward,
+}
+
+impl Difference {
+    /// The difference for `info` at value `v`: central when θ ± h both lie in its interval,
+    /// else the one-sided difference that stays inside. An error when neither step does (an
+    /// interval narrower than the step), naming the parameter.
+    pub fn at(info: &ParamInfo, v: f64) -> Result<Self> {
+        let (lo, hi) = interval(info);
+        let h = info.fd_step;
+        let (up, down) = (v + h <= hi, v - h >= lo);
+        Ok(match (up, down) {
+            (true, true) => Self::Central,
+            (true, false) => Self::Forward,
+            (false, true) => Self::Backward,
+            (false, false) => bail!(
+                "{} = {v} {}: a finite-difference step of {h} leaves its interval [{lo}, {hi}] \
+                 on both sides",
+                info.name,
+                info.unit
+            ),
+        })
+    }
+
+    /// The steps it simulates, θ + sign·h for each sign (θ itself is the prediction).
+    pub fn shifts(self) -> &'static [f64] {
+        match self {
+            Self::Central => &[1.0, -1.0],
+            Self::Forward => &[1.0],
+            Self::Backward => &[-1.0],
+        }
+    }
+
+    /// ∂ŷ/∂θ from the predictions at the steps (`ys`, in [`Difference::shifts`] order) and
+    /// at θ (`at`), for step `h`.
+    pub fn derivative(self, h: f64, ys: &[f64], at: f64) -> f64 {
+        match self {
+            Self::Central => (ys[0] - ys[1]) / (2.0 * h),
+            Self::Forward => (ys[0] - at) / h,
+            Self::Backward => (at - ys[0]) / h,
+        }
+    }
 }
 
 /// Everything the score test needs, computed once per study and calibration.
@@ -117,5 +164,49 @@ impl Linearisation {
             candidates,
             candidate_jacobian,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rigs::single_sphere::PARAMETERS;
+
+    fn param(name: &str) -> &'static ParamInfo {
+        PARAMETERS.iter().find(|p| p.name == name).unwrap()
+    }
+
+    #[test]
+    fn the_difference_stays_inside_the_interval() {
+        let e = param("restitution");
+        assert_eq!(Difference::at(e, 0.5).unwrap(), Difference::Central);
+        // e = 1 is admissible, 1 + h is not; e near its open lower end 0 steps upwards.
+        assert_eq!(Difference::at(e, 1.0).unwrap(), Difference::Backward);
+        assert_eq!(Difference::at(e, 0.015).unwrap(), Difference::Forward);
+        let cohesion = param("cohesion");
+        assert_eq!(Difference::at(cohesion, 0.0).unwrap(), Difference::Forward);
+        assert_eq!(Difference::at(cohesion, 1e4).unwrap(), Difference::Central);
+        // A plastic fraction in [0, 1] with a step wider than the interval has no difference.
+        let mut wide = *param("hysteretic");
+        wide.fd_step = 2.0;
+        let err = Difference::at(&wide, 0.5).unwrap_err().to_string();
+        assert!(
+            err.contains("hysteretic") && err.contains("both sides"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn each_difference_is_exact_on_a_line() {
+        let (h, slope, at) = (0.01, 3.0, 2.0);
+        let y = |s: f64| at + slope * s * h;
+        for d in [
+            Difference::Central,
+            Difference::Forward,
+            Difference::Backward,
+        ] {
+            let ys: Vec<f64> = d.shifts().iter().map(|&s| y(s)).collect();
+            assert!((d.derivative(h, &ys, at) - slope).abs() < 1e-9, "{d:?}");
+        }
     }
 }

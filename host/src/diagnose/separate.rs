@@ -16,7 +16,7 @@ use super::model::Model;
 use super::params::{set, value, ParamInfo};
 use super::residuals::Dataset;
 use super::score::column_basis;
-use super::sensitivity::Linearisation;
+use super::sensitivity::{Difference, Linearisation};
 use crate::calibration::{Condition, ParameterValues};
 
 /// Candidate conditions per experiment (log-spaced over its rig's search range, the
@@ -102,35 +102,45 @@ pub fn propose(
         }
     }
     // Every simulation of every candidate, asked for in one batch: per candidate the
-    // prediction at p, each calibrated parameter stepped up and down, then a and b stepped up.
-    let shifted = |info: &ParamInfo, sign: f64| {
-        let mut q = p.clone();
-        set(info, &mut q, value(info, p) + sign * info.fd_step);
-        q
-    };
+    // prediction at p, then the steps of each calibrated parameter and of a and b (the
+    // finite differences of [`Difference::at`], as in the study's own sensitivities).
+    let stepped: Vec<(&ParamInfo, Difference)> = lin
+        .calibrated
+        .iter()
+        .copied()
+        .chain([a.0, b.0])
+        .map(|info| Ok((info, Difference::at(info, value(info, p))?)))
+        .collect::<Result<_>>()?;
     let mut runs = Vec::new();
     for (ei, _, at, _) in &grid {
         runs.push((*ei, at, p.clone()));
-        for info in &lin.calibrated {
-            runs.push((*ei, at, shifted(info, 1.0)));
-            runs.push((*ei, at, shifted(info, -1.0)));
+        for (info, difference) in &stepped {
+            for sign in difference.shifts() {
+                let mut q = p.clone();
+                set(info, &mut q, value(info, p) + sign * info.fd_step);
+                runs.push((*ei, at, q));
+            }
         }
-        runs.push((*ei, at, shifted(a.0, 1.0)));
-        runs.push((*ei, at, shifted(b.0, 1.0)));
     }
     let y = model.simulate_all(&runs)?;
-    let per_candidate = 3 + 2 * lin.calibrated.len();
+    let per_candidate = 1 + stepped.iter().map(|(_, d)| d.shifts().len()).sum::<usize>();
     let mut best: Option<Proposal> = None;
     for ((ei, x, _, wx), y) in grid.iter().zip(y.chunks(per_candidate)) {
-        let y0 = y[0];
-        let mut jx = jt.clone().insert_row(n, 0.0);
-        for (k, info) in lin.calibrated.iter().enumerate() {
-            let (up, dn) = (y[1 + 2 * k], y[2 + 2 * k]);
-            jx[(n, k)] = (up - dn) / (2.0 * info.fd_step) * wx;
+        // This candidate measurement's row of each sensitivity, weighted.
+        let mut rows = Vec::with_capacity(stepped.len());
+        let mut k = 1;
+        for (info, difference) in &stepped {
+            let m = difference.shifts().len();
+            rows.push(difference.derivative(info.fd_step, &y[k..k + m], y[0]) * wx);
+            k += m;
         }
-        let forward = |info: &ParamInfo, up: f64| (up - y0) / info.fd_step * wx;
-        let sax = sa.clone().insert_row(n, forward(a.0, y[per_candidate - 2]));
-        let sbx = sb.clone().insert_row(n, forward(b.0, y[per_candidate - 1]));
+        let c = lin.calibrated.len();
+        let mut jx = jt.clone().insert_row(n, 0.0);
+        for (k, row) in rows[..c].iter().enumerate() {
+            jx[(n, k)] = *row;
+        }
+        let sax = sa.clone().insert_row(n, rows[c]);
+        let sbx = sb.clone().insert_row(n, rows[c + 1]);
         let s = separation(&jx, &sax, &sbx, theta_a, theta_b);
         if best.as_ref().is_none_or(|bp| s > bp.separation_after) {
             best = Some(Proposal {

@@ -140,7 +140,7 @@ pub const PARAMETERS: [RigParameter; 6] = [
         role: Role::Effect,
         fd_step: 0.02,
         scale: 0.1,
-        limits: Limits::Fraction,
+        limits: Limits::FractionBelowOne,
         about: "hysteretic (plastic) normal contact, plastic fraction of the peak overlap (Walton & Braun 1986)",
     },
 ];
