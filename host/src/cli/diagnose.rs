@@ -117,6 +117,19 @@ pub fn run(args: Args) -> Result<()> {
             "\nverdict: no candidate effect is identifiable with these data; measure more conditions"
         )?,
     }
+    if !data.priors.is_empty() {
+        // The score test does not weigh them yet (issue 22); `fit` does.
+        writeln!(
+            s,
+            "bench priors ({}): this ranking does not use them; `arachis fit STUDY --with EFFECT` \
+             reports each fitted value's distance from its bench value",
+            data.priors
+                .iter()
+                .map(|p| p.param.name)
+                .collect::<Vec<_>>()
+                .join(", ")
+        )?;
+    }
     print!("{s}");
     let tested: Vec<_> = r
         .candidates

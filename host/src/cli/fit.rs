@@ -11,7 +11,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 
-use crate::diagnose::fit::{compare_with, ONE_SIDED_CONFIDENCE};
+use crate::diagnose::fit::{compare_with, residual_count, ONE_SIDED_CONFIDENCE};
 use crate::diagnose::model::Model;
 use crate::diagnose::params::value;
 use crate::diagnose::plot::plot_experiment;
@@ -20,6 +20,9 @@ use crate::diagnose::sensitivity::predict;
 use crate::io::atomic::write_string_atomic;
 use crate::rigs::single_sphere::ModelParams;
 use crate::study::Study;
+
+/// A fitted base parameter this many bench SDs from its bench value is a conflict.
+const PRIOR_CONFLICT_SD: f64 = 3.0;
 
 /// Significance level of the nested-model tests in the verdict.
 const NESTED_ALPHA: f64 = 0.05;
@@ -123,6 +126,38 @@ pub fn run(args: Args) -> Result<()> {
             }
         }
     }
+    if !data.priors.is_empty() {
+        writeln!(
+            s,
+            "bench priors (distance of the fitted value from the bench value, in bench SDs; beyond {PRIOR_CONFLICT_SD} is a conflict):"
+        )?;
+        for (k, prior) in data.priors.iter().enumerate() {
+            let at = |f: &crate::diagnose::fit::FitResult| {
+                let z = f.prior_z[k].1;
+                let v = value(prior.param, &f.params);
+                let verdict = if z.abs() > PRIOR_CONFLICT_SD {
+                    format!(
+                        ": the calibration fits the data only {:.1} SD {} the bench value",
+                        z.abs(),
+                        if z < 0.0 { "below" } else { "above" }
+                    )
+                } else {
+                    String::new()
+                };
+                format!("{v:.5e} ({z:+.1} SD{verdict})")
+            };
+            writeln!(
+                s,
+                "  {:<16} bench {:.5e} ± {:.2e} {}\n    effect off: {}\n    effect on:  {}",
+                prior.param.name,
+                prior.mean,
+                prior.sd,
+                prior.param.unit,
+                at(&c.without),
+                at(&c.with)
+            )?;
+        }
+    }
     writeln!(s, "nested-model test ({} on vs off):", eff.name)?;
     writeln!(
         s,
@@ -133,7 +168,7 @@ pub fn run(args: Args) -> Result<()> {
         s,
         "  F                 {:.2} ~ F(1, {}), p = {:.3e}",
         c.f,
-        c.n - c.with.k(),
+        residual_count(&data, &c.with.free) - c.with.k(),
         c.f_p
     )?;
     let n = c.n;

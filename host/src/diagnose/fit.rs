@@ -27,7 +27,7 @@ use statrs::distribution::{ChiSquared, ContinuousCDF, FisherSnedecor, Normal};
 
 use super::model::Model;
 use super::params::{interval, set, value, ParamInfo};
-use super::residuals::Dataset;
+use super::residuals::{BenchPrior, Dataset};
 use super::score::scale_rows;
 use super::sensitivity::{jacobian, predict};
 use crate::calibration::ParameterValues;
@@ -54,6 +54,15 @@ struct Problem<'a> {
 }
 
 impl Problem<'_> {
+    /// The bench priors on free parameters, with the parameter's index in `free`: each adds
+    /// a residual (θ − mean)/sd after the data's.
+    fn priors(&self) -> impl Iterator<Item = (usize, &BenchPrior)> {
+        self.data.priors.iter().filter_map(|prior| {
+            let k = self.free.iter().position(|f| f.key == prior.param.key)?;
+            Some((k, prior))
+        })
+    }
+
     fn params(&self, u: &DVector<f64>) -> ParameterValues {
         let mut p = self.start.clone();
         for (k, info) in self.free.iter().enumerate() {
@@ -70,12 +79,17 @@ impl Operator for Problem<'_> {
     fn apply(&self, u: &Self::Param) -> Result<Self::Output, argmin::core::Error> {
         let p = self.params(u);
         let pred = predict(self.data, self.model, &p)?;
+        let data = pred
+            .iter()
+            .zip(&self.data.obs)
+            .zip(self.weights.iter())
+            .map(|((y, o), w)| (y - o.mean) * w);
+        let priors = self
+            .priors()
+            .map(|(_, prior)| prior.z(value(prior.param, &p)));
         Ok(DVector::from_iterator(
-            pred.len(),
-            pred.iter()
-                .zip(&self.data.obs)
-                .zip(self.weights.iter())
-                .map(|((y, o), w)| (y - o.mean) * w),
+            pred.len() + self.priors().count(),
+            data.chain(priors),
         ))
     }
 }
@@ -99,6 +113,12 @@ impl Jacobian for Problem<'_> {
         for (k, info) in self.free.iter().enumerate() {
             j.column_mut(k).scale_mut(info.scale);
         }
+        // d((θ − mean)/sd)/du = scale/sd, in the parameter's column.
+        for (k, prior) in self.priors().collect::<Vec<_>>() {
+            let row = j.nrows();
+            j = j.insert_row(row, 0.0);
+            j[(row, k)] = self.free[k].scale / prior.sd;
+        }
         Ok(j)
     }
 }
@@ -120,6 +140,10 @@ pub struct FitResult {
     pub iterations: u64,
     /// Per free parameter: the end of its interval the estimate sits on, if any.
     pub on_end: Vec<Option<f64>>,
+    /// Σ ((θ − mean)/sd)² over the bench priors on free parameters (0 without any).
+    pub prior_sse: f64,
+    /// Every bench prior's parameter and its distance (θ − mean)/sd at the fit, in SDs.
+    pub prior_z: Vec<(&'static ParamInfo, f64)>,
 }
 
 impl FitResult {
@@ -139,13 +163,18 @@ impl FitResult {
         })
     }
 
+    /// The objective the fit minimised: SSE plus the priors' share.
+    pub fn objective(&self) -> f64 {
+        self.sse + self.prior_sse
+    }
+
     /// Number of fitted parameters k.
     pub fn k(&self) -> usize {
         self.free.len()
     }
-    /// AIC = SSE + 2k.
+    /// AIC = SSE + 2k (SSE with the priors' share, [`FitResult::objective`]).
     pub fn aic(&self) -> f64 {
-        self.sse + 2.0 * self.k() as f64
+        self.objective() + 2.0 * self.k() as f64
     }
     /// AICc = AIC + 2k(k+1)/(N − k − 1) (infinite when N ≤ k + 1).
     pub fn aicc(&self, n: usize) -> f64 {
@@ -157,9 +186,9 @@ impl FitResult {
             self.aic() + 2.0 * k * (k + 1.0) / d
         }
     }
-    /// BIC = SSE + k·ln N.
+    /// BIC = SSE + k·ln N (SSE with the priors' share).
     pub fn bic(&self, n: usize) -> f64 {
-        self.sse + self.k() as f64 * (n as f64).ln()
+        self.objective() + self.k() as f64 * (n as f64).ln()
     }
 }
 
@@ -181,9 +210,44 @@ pub fn determinable_base(
     Ok(base
         .into_iter()
         .enumerate()
-        .filter(|(k, info)| j.column(*k).norm() * info.scale >= MIN_BASE_INFLUENCE)
+        .filter(|(k, info)| {
+            // A bench prior determines its parameter whatever the data say.
+            j.column(*k).norm() * info.scale >= MIN_BASE_INFLUENCE
+                || data.priors.iter().any(|p| p.param.key == info.key)
+        })
         .map(|(_, info)| info)
         .collect())
+}
+
+/// The bench priors' share of a fit of `free` at `params`: Σ z² over the priors on free
+/// parameters, and every prior's z = (θ − mean)/sd.
+fn prior_terms(
+    data: &Dataset,
+    free: &[&'static ParamInfo],
+    params: &ParameterValues,
+) -> (f64, Vec<(&'static ParamInfo, f64)>) {
+    let z: Vec<(&'static ParamInfo, f64)> = data
+        .priors
+        .iter()
+        .map(|p| (p.param, p.z(value(p.param, params))))
+        .collect();
+    let sse = z
+        .iter()
+        .filter(|(param, _)| free.iter().any(|f| f.key == param.key))
+        .map(|(_, z)| z * z)
+        .sum();
+    (sse, z)
+}
+
+/// Residuals a fit of `free` to `data` has: one per condition and one per bench prior on a
+/// free parameter.
+pub fn residual_count(data: &Dataset, free: &[&'static ParamInfo]) -> usize {
+    data.obs.len()
+        + data
+            .priors
+            .iter()
+            .filter(|p| free.iter().any(|f| f.key == p.param.key))
+            .count()
 }
 
 /// Fit the parameters `free` from `start` (which also holds the fixed ones).
@@ -196,6 +260,7 @@ pub fn fit(
     if free.is_empty() {
         let predictions = predict(data, model, start)?;
         let sse = data.standardised(&predictions).iter().map(|r| r * r).sum();
+        let (prior_sse, prior_z) = prior_terms(data, &[], start);
         return Ok(FitResult {
             params: start.clone(),
             free: Vec::new(),
@@ -204,9 +269,11 @@ pub fn fit(
             sse,
             iterations: 0,
             on_end: Vec::new(),
+            prior_sse,
+            prior_z,
         });
     }
-    if free.len() >= data.obs.len() {
+    if free.len() >= residual_count(data, free) {
         bail!(
             "{} parameters cannot be fitted to {} conditions",
             free.len(),
@@ -294,6 +361,7 @@ pub fn fit(
             [lo, hi].into_iter().find(|&end| v == end)
         })
         .collect();
+    let (prior_sse, prior_z) = prior_terms(data, free, &params);
     Ok(FitResult {
         params,
         free: free.to_vec(),
@@ -302,6 +370,8 @@ pub fn fit(
         sse,
         iterations,
         on_end,
+        prior_sse,
+        prior_z,
     })
 }
 
@@ -396,11 +466,11 @@ pub fn compare_with(
     let mut free = base.clone();
     free.push(effect);
     let with = fit(data, model, &start, &free)?;
-    let lr = (without.sse - with.sse).max(0.0);
+    let lr = (without.objective() - with.objective()).max(0.0);
     let lr_p = 1.0 - ChiSquared::new(1.0)?.cdf(lr);
-    let dfr = n as f64 - with.k() as f64;
-    let (f, f_p) = if dfr > 0.0 && with.sse > 0.0 {
-        let f = lr / (with.sse / dfr);
+    let dfr = residual_count(data, &with.free) as f64 - with.k() as f64;
+    let (f, f_p) = if dfr > 0.0 && with.objective() > 0.0 {
+        let f = lr / (with.objective() / dfr);
         (f, 1.0 - FisherSnedecor::new(1.0, dfr)?.cdf(f))
     } else {
         (f64::NAN, f64::NAN)

@@ -10,7 +10,9 @@
 use anyhow::{bail, Result};
 use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 
+use super::params::ParamInfo;
 use crate::calibration::Condition;
+use crate::rigs::single_sphere::PARAMETERS;
 use crate::study::Study;
 
 /// One condition of one experiment, reduced.
@@ -63,6 +65,26 @@ pub struct Dataset {
     pub obs: Vec<Obs>,
     /// Pure error per experiment.
     pub pure_error: Vec<PureError>,
+    /// Bench measurements of base parameters (`[diagnosis.prior]`).
+    pub priors: Vec<BenchPrior>,
+}
+
+/// A base parameter measured on the bench: a fit adds ((θ − mean)/sd)² to its objective.
+#[derive(Clone, Copy, Debug)]
+pub struct BenchPrior {
+    /// The parameter.
+    pub param: &'static ParamInfo,
+    /// Bench mean and SD, in the parameter's unit.
+    pub mean: f64,
+    /// Bench SD.
+    pub sd: f64,
+}
+
+impl BenchPrior {
+    /// How far `value` lies from the bench mean, in bench SDs.
+    pub fn z(&self, value: f64) -> f64 {
+        (value - self.mean) / self.sd
+    }
 }
 
 /// Smallest pure-error SD accepted, relative to the mean magnitude: replicates that agree to
@@ -150,10 +172,25 @@ impl Dataset {
                 });
             }
         }
+        let priors = study
+            .file()
+            .diagnosis
+            .iter()
+            .flat_map(|d| &d.prior)
+            .filter_map(|(name, p)| {
+                let param = PARAMETERS.iter().find(|i| i.name == name)?;
+                Some(BenchPrior {
+                    param,
+                    mean: p.mean,
+                    sd: p.sd,
+                })
+            })
+            .collect();
         Ok(Dataset {
             experiments,
             obs,
             pure_error,
+            priors,
         })
     }
 

@@ -228,6 +228,7 @@ mod tests {
             experiments: Vec::new(),
             obs,
             pure_error: vec![PureError { sd: 1.0, df: 10 }],
+            priors: Vec::new(),
         };
         let catalogue = Catalogue::of_rigs(["rebound"]);
         let effect = |name| catalogue.effect(name).unwrap();

@@ -9,6 +9,8 @@
 //! [diagnosis.calibration]          # base parameters; effects default to 0 (off)
 //! restitution = 0.5
 //! youngs_modulus_pa = 8.43e6
+//! [diagnosis.prior]                # optional: base parameters measured on the bench
+//! restitution = { mean = 0.48, sd = 0.02 }
 //! [[diagnosis.experiment]]
 //! kind = "rebound"                 # a single-sphere rig: rebound | press | fall | unload
 //! noise_sd = 0.01                  # optional: used only by `arachis synth`
@@ -17,6 +19,8 @@
 //! values = [0.551, 0.562, 0.548]   # replicates; or `replicates = 5` in a template
 //! ```
 
+use std::collections::BTreeMap;
+
 use serde::{Deserialize, Serialize};
 
 use super::error::StudyError;
@@ -24,7 +28,8 @@ use super::key_path::KeyPath;
 use super::source::Source;
 use crate::rigs::catalogue;
 use crate::rigs::kind::WorldKind;
-use crate::rigs::single_sphere::ModelParams;
+use crate::rigs::parameter::Role;
+use crate::rigs::single_sphere::{ModelParams, PARAMETERS};
 
 /// `[diagnosis]`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -38,6 +43,20 @@ pub struct DiagnosisSection {
     /// The experiments.
     #[serde(default)]
     pub experiment: Vec<DiagnosisExperiment>,
+    /// Base parameters measured on the bench (`arachis lab`), by parameter name: a fit weighs
+    /// the distance from each in SDs and reports it.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub prior: BTreeMap<String, Prior>,
+}
+
+/// A bench measurement of a base parameter: mean ± SD, in the parameter's unit.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Prior {
+    /// The measured mean.
+    pub mean: f64,
+    /// Its standard deviation (of the value, not of a replicate), > 0.
+    pub sd: f64,
 }
 
 /// One experiment: a single-sphere rig and its measured points.
@@ -99,6 +118,32 @@ fn median_magnitude<'a>(values: impl Iterator<Item = &'a f64>) -> f64 {
     m[m.len() / 2]
 }
 
+/// `Ok` when `prior` is a bench value of a base parameter named `name`: a known name, a mean
+/// inside the parameter's limits and a finite SD > 0.
+fn check_prior(name: &str, prior: &Prior) -> Result<(), String> {
+    let base: Vec<&str> = PARAMETERS
+        .iter()
+        .filter(|p| p.role == Role::Base)
+        .map(|p| p.name)
+        .collect();
+    let Some(info) = PARAMETERS
+        .iter()
+        .find(|p| p.name == name && p.role == Role::Base)
+    else {
+        return Err(format!(
+            "unknown base parameter '{name}' (priors are for: {})",
+            base.join(", ")
+        ));
+    };
+    info.limits
+        .check(prior.mean)
+        .map_err(|reason| format!("mean {reason}"))?;
+    if !(prior.sd.is_finite() && prior.sd > 0.0) {
+        return Err(format!("sd = {} must be a finite number > 0", prior.sd));
+    }
+    Ok(())
+}
+
 /// Every error of a decoded `[diagnosis]`: the calibration's ranges, each experiment's rig
 /// (a single-sphere one), its noise SD, and each point's condition (inside the rig's range,
 /// no condition twice), values (finite) and replicate count.
@@ -113,6 +158,12 @@ pub(crate) fn validate(src: &Source<'_>, d: &DiagnosisSection) -> Vec<StudyError
     }
     if let Err(reason) = d.calibration.validate() {
         err(at.key("calibration"), reason);
+    }
+    for (name, prior) in &d.prior {
+        let here = at.key("prior").key(name);
+        if let Err(reason) = check_prior(name, prior) {
+            err(here, reason);
+        }
     }
     if d.experiment.is_empty() {
         err(
@@ -264,6 +315,28 @@ impl super::Study {
         ) {
             (Some(d), true) => d.to_toml().map_err(|e| e.to_string()),
             _ => toml::to_string_pretty(&out).map_err(|e| e.to_string()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_prior_names_a_base_parameter_with_an_admissible_mean_and_a_positive_sd() {
+        let ok = Prior {
+            mean: 0.5,
+            sd: 0.01,
+        };
+        assert!(check_prior("restitution", &ok).is_ok());
+        let e = check_prior("viscoelastic", &ok).unwrap_err();
+        assert!(e.contains("unknown base parameter 'viscoelastic'") && e.contains("restitution"));
+        let e = check_prior("restitution", &Prior { mean: 1.2, ..ok }).unwrap_err();
+        assert!(e.starts_with("mean ") && e.contains("(0, 1]"), "{e}");
+        for sd in [0.0, -1.0, f64::NAN] {
+            let e = check_prior("restitution", &Prior { sd, ..ok }).unwrap_err();
+            assert!(e.contains("must be a finite number > 0"), "{e}");
         }
     }
 }
