@@ -118,17 +118,23 @@ pub fn run(args: Args) -> Result<()> {
         )?,
     }
     if !data.priors.is_empty() {
-        // The score test does not weigh them yet (issue 22); `fit` does.
         writeln!(
             s,
-            "bench priors ({}): this ranking does not use them; `arachis fit STUDY --with EFFECT` \
-             reports each fitted value's distance from its bench value",
-            data.priors
-                .iter()
-                .map(|p| p.param.name)
-                .collect::<Vec<_>>()
-                .join(", ")
+            "bench priors (each one more observation of its parameter in the score test):"
         )?;
+        let current = study.current_values();
+        for prior in &data.priors {
+            let v = crate::diagnose::params::value(prior.param, &current);
+            writeln!(
+                s,
+                "  {:<16} calibration {v:.5e}, bench {:.5e} ± {:.2e} {}: {:+.1} SD",
+                prior.param.name,
+                prior.mean,
+                prior.sd,
+                prior.param.unit,
+                prior.z(v)
+            )?;
+        }
     }
     print!("{s}");
     let tested: Vec<_> = r

@@ -24,6 +24,12 @@
 //!   [`COLLINEAR_COSINE`]) explain the same misfit; opposite directions are told apart by the
 //!   sign (θ ≥ 0).
 //! - θ̂ = s⊥ᵀr/‖s⊥‖² is the one-step estimate of the effect parameter, SE 1/‖s⊥‖.
+//!
+//! **Bench priors** (`[diagnosis.prior]`, mean ± sd of a calibrated parameter) enter as one
+//! more observation each: r gets the row (mean − θ)/sd, J̃ the row 1/sd in the parameter's
+//! column, and every effect's s̃ a 0. A tight prior keeps its parameter from absorbing an
+//! effect's signature, so an effect the calibration would hide becomes testable, and a
+//! calibration far from its bench value counts as misfit.
 
 use anyhow::Result;
 use nalgebra::{DMatrix, DVector};
@@ -32,6 +38,8 @@ use statrs::distribution::{ContinuousCDF, Normal};
 use super::params::ParamInfo;
 use super::residuals::Dataset;
 use super::sensitivity::Linearisation;
+#[cfg(test)]
+use super::sensitivity::PriorRow;
 
 /// Family-wise false-claim level over the candidate set.
 pub const FAMILY_ALPHA: f64 = 0.05;
@@ -109,14 +117,24 @@ impl Ranking {
 /// Rank the candidates of `lin` against the measurements `data`.
 pub fn rank(data: &Dataset, lin: &Linearisation) -> Result<Ranking> {
     let n = data.obs.len();
+    let q = lin.prior_rows.len();
     let w = DVector::from_iterator(n, data.obs.iter().map(|o| 1.0 / o.se_mean));
-    let r = DVector::from_vec(data.standardised(&lin.predictions));
-    let jt = scale_rows(&lin.calibrated_jacobian, &w);
+    let mut r = data.standardised(&lin.predictions);
+    r.extend(lin.prior_rows.iter().map(|p| p.residual));
+    let r = DVector::from_vec(r);
+    let mut jt = scale_rows(&lin.calibrated_jacobian, &w).resize_vertically(n + q, 0.0);
+    for (i, p) in lin.prior_rows.iter().enumerate() {
+        jt[(n + i, p.column)] = p.inverse_sd;
+    }
     let basis = column_basis(&jt);
     let normal = Normal::new(0.0, 1.0)?;
     let mut cands = Vec::new();
     for (k, effect) in lin.candidates.iter().enumerate() {
-        let s = lin.candidate_jacobian.column(k).component_mul(&w);
+        let s = lin
+            .candidate_jacobian
+            .column(k)
+            .component_mul(&w)
+            .resize_vertically(n + q, 0.0);
         let full = s.norm();
         let perp = &s - &basis * (basis.transpose() * &s);
         let pn = perp.norm();
@@ -240,6 +258,7 @@ mod tests {
             calibrated_jacobian: DMatrix::from_element(3, 1, 1.0),
             candidates: vec![effect("viscoelastic"), effect("drag")],
             candidate_jacobian: DMatrix::from_fn(3, 2, |i, j| [s_visco, s_drag][j][i]),
+            prior_rows: Vec::new(),
         };
         (data, lin)
     }
@@ -273,6 +292,34 @@ mod tests {
         assert!(r.top().is_none());
         assert_eq!(r.candidates[0].status, Status::NotIdentifiable);
         assert_eq!(r.candidates[1].status, Status::NoSensitivity);
+    }
+
+    #[test]
+    fn a_tight_bench_prior_stops_the_calibration_absorbing_an_effect() {
+        // As above, the constant visco signature is absorbed by e, unless e is held to its
+        // bench value (prior SD 0.01, calibration on it): then s⊥ ≈ s̃ = (2, 2, 2, 0) less a
+        // projection of 6/10 003 along (1, 1, 1, 100), and z ≈ s̃ᵀr/‖s̃‖ = 30/√12.
+        let (d, mut l) = setup([3.0, 5.0, 7.0], [2.0, 2.0, 2.0], [0.0; 3]);
+        l.prior_rows.push(PriorRow {
+            column: 0,
+            inverse_sd: 100.0,
+            residual: 0.0,
+        });
+        // Exactly: c = (1, 1, 1, 100), s⊥ = s̃ − c·(cᵀs̃)/‖c‖², with cᵀs̃ = 6, ‖c‖² = 10 003;
+        // for r = (3, 5, 7, ρ): s⊥ᵀr = 30 − (6/10 003)(15 + 100ρ), ‖s⊥‖² = 12 − 36/10 003.
+        let exact = |rho: f64| {
+            (30.0 - 6.0 / 10_003.0 * (15.0 + 100.0 * rho)) / (12.0 - 36.0 / 10_003.0f64).sqrt()
+        };
+        let r = rank(&d, &l).unwrap();
+        let top = r.top().unwrap();
+        assert_eq!(top.effect.name, "viscoelastic");
+        assert!((top.z - exact(0.0)).abs() < 1e-12, "{}", top.z);
+        assert!(top.identifiable_fraction > 0.99);
+        assert!(r.any_claimed());
+        // A calibration off its bench value adds the prior row's residual ρ to r.
+        l.prior_rows[0].residual = -5.0;
+        let moved = rank(&d, &l).unwrap();
+        assert!((moved.top().unwrap().z - exact(-5.0)).abs() < 1e-12);
     }
 
     #[test]

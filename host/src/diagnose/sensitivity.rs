@@ -133,6 +133,20 @@ pub struct Linearisation {
     pub candidates: Vec<&'static ParamInfo>,
     /// ∂ŷ/∂θ of the candidates at their off value, N × m.
     pub candidate_jacobian: DMatrix<f64>,
+    /// The bench priors on calibrated parameters, as extra rows of the score test.
+    pub prior_rows: Vec<PriorRow>,
+}
+
+/// A bench prior as one more standardised observation of a calibrated parameter: residual
+/// (mean − θ)/sd, sensitivity 1/sd in the parameter's column, 0 for every effect.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PriorRow {
+    /// The parameter's column in [`Linearisation::calibrated`].
+    pub column: usize,
+    /// 1/sd, per parameter unit.
+    pub inverse_sd: f64,
+    /// (mean − θ)/sd at the calibration.
+    pub residual: f64,
 }
 
 impl Linearisation {
@@ -157,12 +171,25 @@ impl Linearisation {
             .collect();
         let calibrated_jacobian = jacobian(data, model, p, &predictions, &calibrated)?;
         let candidate_jacobian = jacobian(data, model, p, &predictions, &candidates)?;
+        let prior_rows = data
+            .priors
+            .iter()
+            .filter_map(|prior| {
+                let column = calibrated.iter().position(|c| c.key == prior.param.key)?;
+                Some(PriorRow {
+                    column,
+                    inverse_sd: 1.0 / prior.sd,
+                    residual: -prior.z(value(prior.param, p)),
+                })
+            })
+            .collect();
         Ok(Linearisation {
             predictions,
             calibrated,
             calibrated_jacobian,
             candidates,
             candidate_jacobian,
+            prior_rows,
         })
     }
 }

@@ -77,11 +77,30 @@ pub fn propose(
     if ia == usize::MAX || ib == usize::MAX {
         return Ok(None);
     }
-    let jt = DMatrix::from_fn(n, lin.calibrated.len(), |i, j| {
-        lin.calibrated_jacobian[(i, j)] * w[i]
+    // The weighted sensitivities, with a row per bench prior (as in the score test).
+    let rows = n + lin.prior_rows.len();
+    let jt = DMatrix::from_fn(rows, lin.calibrated.len(), |i, j| {
+        if i < n {
+            lin.calibrated_jacobian[(i, j)] * w[i]
+        } else {
+            let prior = &lin.prior_rows[i - n];
+            if prior.column == j {
+                prior.inverse_sd
+            } else {
+                0.0
+            }
+        }
     });
-    let sa = DVector::from_fn(n, |i, _| lin.candidate_jacobian[(i, ia)] * w[i]);
-    let sb = DVector::from_fn(n, |i, _| lin.candidate_jacobian[(i, ib)] * w[i]);
+    let effect_rows = |col: usize| {
+        DVector::from_fn(rows, |i, _| {
+            if i < n {
+                lin.candidate_jacobian[(i, col)] * w[i]
+            } else {
+                0.0
+            }
+        })
+    };
+    let (sa, sb) = (effect_rows(ia), effect_rows(ib));
     let theta_a = if a.1 > 0.0 { a.1 } else { a.0.fd_step };
     let theta_b = if b.1 > 0.0 { b.1 } else { b.0.fd_step };
     let now = separation(&jt, &sa, &sb, theta_a, theta_b);
@@ -127,20 +146,20 @@ pub fn propose(
     let mut best: Option<Proposal> = None;
     for ((ei, x, _, wx), y) in grid.iter().zip(y.chunks(per_candidate)) {
         // This candidate measurement's row of each sensitivity, weighted.
-        let mut rows = Vec::with_capacity(stepped.len());
+        let mut extra = Vec::with_capacity(stepped.len());
         let mut k = 1;
         for (info, difference) in &stepped {
             let m = difference.shifts().len();
-            rows.push(difference.derivative(info.fd_step, &y[k..k + m], y[0]) * wx);
+            extra.push(difference.derivative(info.fd_step, &y[k..k + m], y[0]) * wx);
             k += m;
         }
         let c = lin.calibrated.len();
-        let mut jx = jt.clone().insert_row(n, 0.0);
-        for (k, row) in rows[..c].iter().enumerate() {
-            jx[(n, k)] = *row;
+        let mut jx = jt.clone().insert_row(rows, 0.0);
+        for (k, row) in extra[..c].iter().enumerate() {
+            jx[(rows, k)] = *row;
         }
-        let sax = sa.clone().insert_row(n, rows[c]);
-        let sbx = sb.clone().insert_row(n, rows[c + 1]);
+        let sax = sa.clone().insert_row(rows, extra[c]);
+        let sbx = sb.clone().insert_row(rows, extra[c + 1]);
         let s = separation(&jx, &sax, &sbx, theta_a, theta_b);
         if best.as_ref().is_none_or(|bp| s > bp.separation_after) {
             best = Some(Proposal {
