@@ -9,10 +9,8 @@
 //! stepped past 1).
 
 mod diagnose_support;
-use arachis::diagnose::fit::{compare_with, FitResult};
-use arachis::diagnose::model::Model;
+use arachis::diagnose::fit::FitResult;
 use arachis::diagnose::params::{value, Catalogue};
-use arachis::diagnose::sensitivity::Linearisation;
 use diagnose_support::*;
 
 /// Noise seeds per case.
@@ -73,13 +71,8 @@ fn restitution_of_one_is_fitted_from_a_wrong_start() {
     let visco = effect("viscoelastic");
     let (mut on_end, mut covered) = (0, 0);
     for seed in 0..SEEDS {
-        let data = c.data(seed);
-        let measured = c.measured(seed);
-        let model = Model::new(&measured, &data.experiments).unwrap();
         // The leave-one-condition-out refits (one failed before) on the first seeds only.
-        let loco = seed < 3;
-        let cmp = compare_with(&data, &model, &c.study.current_values(), visco, loco)
-            .unwrap_or_else(|e| panic!("seed {seed}: {e:#}"));
+        let cmp = c.compare(seed, visco, seed < 3);
         check_ends(&cmp.with);
         check_ends(&cmp.without);
         let (e, se, end) = estimate(&cmp.with, "restitution");
@@ -112,11 +105,7 @@ fn a_calibration_on_restitution_one_is_diagnosed_and_fitted() {
         if c.ranking(seed).top().map(|t| t.effect.name) == Some("viscoelastic") {
             first += 1;
         }
-        let data = c.data(seed);
-        let measured = c.measured(seed);
-        let model = Model::new(&measured, &data.experiments).unwrap();
-        let cmp = compare_with(&data, &model, &c.study.current_values(), visco, false)
-            .unwrap_or_else(|e| panic!("seed {seed}: {e:#}"));
+        let cmp = c.compare(seed, visco, false);
         check_ends(&cmp.with);
     }
     assert!(first >= 8, "viscoelastic first in {first}/{SEEDS}");
@@ -129,11 +118,7 @@ fn cohesion_of_zero_is_fitted_on_its_end() {
     let cohesion = effect("cohesion");
     let mut on_end = 0;
     for seed in 0..SEEDS {
-        let data = c.data(seed);
-        let measured = c.measured(seed);
-        let model = Model::new(&measured, &data.experiments).unwrap();
-        let cmp = compare_with(&data, &model, &c.study.current_values(), cohesion, false)
-            .unwrap_or_else(|e| panic!("seed {seed}: {e:#}"));
+        let cmp = c.compare(seed, cohesion, false);
         check_ends(&cmp.with);
         let (v, se, end) = estimate(&cmp.with, "cohesion");
         match end {
@@ -151,39 +136,27 @@ fn cohesion_of_zero_is_fitted_on_its_end() {
 
 #[test]
 fn sensitivities_never_step_past_an_end() {
-    // The linearisation at e = 1 (backward difference) agrees with the forward-free estimate
-    // from below: a central difference at e = 1 − h, within the curvature over one step.
-    let mut section = template();
-    section.calibration.restitution = 1.0;
-    let c = case_for(section.clone(), None);
-    let k = c
-        .lin
-        .calibrated
-        .iter()
-        .position(|p| p.name == "restitution")
-        .unwrap();
-    let mut below = section;
-    below.calibration.restitution = 1.0 - effect_step("restitution");
-    let b = case_for(below, None);
-    let kb = b
-        .lin
-        .calibrated
-        .iter()
-        .position(|p| p.name == "restitution")
-        .unwrap();
-    let data = c.data(0);
-    let measured = c.measured(0);
-    let model = Model::new(&measured, &data.experiments).unwrap();
-    let at_one = Linearisation::new(&data, &model, &c.study.current_values()).unwrap();
-    for i in 0..data.obs.len() {
-        let (back, central) = (
-            at_one.calibrated_jacobian[(i, k)],
-            b.lin.calibrated_jacobian[(i, kb)],
-        );
+    // At e = 1 the sensitivity to e is a backward difference (e = 1 − h and 1); it agrees
+    // with the central difference at e = 1 − h (e = 1 − 2h and 1), within the curvature over
+    // one step.
+    let at = |e: f64| {
+        let mut section = template();
+        section.calibration.restitution = e;
+        let c = case_for(section, None);
+        let k = c
+            .lin
+            .calibrated
+            .iter()
+            .position(|p| p.name == "restitution")
+            .unwrap();
+        c.lin.calibrated_jacobian.column(k).into_owned()
+    };
+    let (back, central) = (at(1.0), at(1.0 - effect_step("restitution")));
+    for (i, (b, c)) in back.iter().zip(central.iter()).enumerate() {
         // Both approximate ∂ŷ/∂e at points one half-step apart: equal to 10 % or a hair.
         assert!(
-            (back - central).abs() <= 0.1 * central.abs() + 1e-9,
-            "row {i}: backward {back} vs central {central}"
+            (b - c).abs() <= 0.1 * c.abs() + 1e-9,
+            "row {i}: backward {b} vs central {c}"
         );
     }
 }

@@ -6,8 +6,6 @@
 //! Data: the tutorial template (truth e = 0.5), ten noise seeds, bench e = 0.5 ± 0.01.
 
 mod diagnose_support;
-use arachis::diagnose::fit::compare_with;
-use arachis::diagnose::model::Model;
 use arachis::study::diagnosis::Prior;
 use diagnose_support::*;
 
@@ -30,11 +28,8 @@ fn distances(hidden: Option<(&str, f64)>, effect_name: &str) -> Vec<(f64, f64)> 
     let info = effect(effect_name);
     (0..SEEDS)
         .map(|seed| {
-            let data = c.data(seed);
-            assert_eq!(data.priors.len(), 1);
-            let measured = c.measured(seed);
-            let model = Model::new(&measured, &data.experiments).unwrap();
-            let cmp = compare_with(&data, &model, &c.study.current_values(), info, false).unwrap();
+            assert_eq!(c.data(seed).priors.len(), 1);
+            let cmp = c.compare(seed, info, false);
             let z = |f: &arachis::diagnose::fit::FitResult| {
                 assert_eq!(f.prior_z[0].0.name, "restitution");
                 // The prior's share of the objective is its z², the parameter being free.

@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use arachis::diagnose::fit::compare_with;
+use arachis::diagnose::fit::{compare_with, Comparison};
 use arachis::diagnose::model::Model;
 use arachis::diagnose::params::{value as param_value, Catalogue};
 use arachis::diagnose::residuals::{experiments, Dataset};
@@ -125,6 +125,20 @@ impl Case {
     pub fn ranking(&self, seed: u64) -> Ranking {
         rank(&self.data(seed), &self.lin).unwrap()
     }
+    /// `fit`'s comparison for seed `seed`: the base refit without and with `effect` (and the
+    /// leave-one-condition-out refits when `loco`); a failed fit panics, naming the seed.
+    pub fn compare(
+        &self,
+        seed: u64,
+        effect: &'static arachis::diagnose::params::ParamInfo,
+        loco: bool,
+    ) -> Comparison {
+        let measured = self.measured(seed);
+        let data = Dataset::new(&measured).unwrap();
+        let model = Model::new(&measured, &data.experiments).unwrap();
+        compare_with(&data, &model, &self.study.current_values(), effect, loco)
+            .unwrap_or_else(|e| panic!("seed {seed}: {e:#}"))
+    }
 }
 
 /// Replicates per condition in the fit studies.
@@ -142,10 +156,8 @@ pub fn fit_case(kind: &str, name: &str, value: f64, seeds: u64) {
     let (mut in_band, mut covered) = (0, 0);
     let (mut sum_ratio, mut sum_est) = (0.0, 0.0);
     for seed in 0..seeds {
-        let measured = c.measured(seed);
-        let data = Dataset::new(&measured).unwrap();
-        let model = Model::new(&measured, &data.experiments).unwrap();
-        let cmp = compare_with(&data, &model, &c.study.current_values(), info, false).unwrap();
+        let data = c.data(seed);
+        let cmp = c.compare(seed, info, false);
         let f = &cmp.with;
         let (mut ss, mut n) = (0.0, 0);
         for (o, y) in data.obs.iter().zip(&f.predictions) {
