@@ -12,6 +12,11 @@
 //! argmin's. An estimate on an end is reported as such, with its one-sided interval
 //! ([`FitResult::one_sided_interval`]).
 //!
+//! Bench priors (`[diagnosis.prior]`, mean ± sd of a base parameter): each free parameter with
+//! one adds the residual (θ − mean)/sd, so the objective is SSE + Σ z². The tests and criteria
+//! below use that objective (SSE in their formulas) and count the prior rows in N; without
+//! priors nothing changes.
+//!
 //! Reports (see [`Comparison`]): the error before/after, the nested-model test (likelihood
 //! ratio Δ = SSE₀ − SSE₁ ~ χ²₁ with the pure-error σ, and F = Δ/(SSE₁/(N − k₁)) ~ F(1, N − k₁)),
 //! AIC = SSE + 2k, AICc = AIC + 2k(k+1)/(N − k − 1) and BIC = SSE + k·ln N (Gaussian
