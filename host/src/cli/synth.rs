@@ -15,7 +15,7 @@ use anyhow::{anyhow, Context, Result};
 
 use crate::diagnose::model::Model;
 use crate::diagnose::residuals::experiments;
-use crate::diagnose::synth::{add_noise, truths, NoiseSpec};
+use crate::diagnose::synth::{add_noise, truths, truths_from_csv, NoiseSpec};
 use crate::io::atomic::write_string_atomic;
 use crate::study::Study;
 
@@ -28,8 +28,12 @@ pub struct Args {
     /// Study or template file.
     pub study: PathBuf,
     /// Hidden effect, EFFECT=VALUE (repeatable; none = the calibrated model itself).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "truth")]
     pub hidden: Vec<String>,
+    /// True values from a CSV file (experiment,condition,truth) instead of this model's, e.g.
+    /// made by another engine (scripts/liggghts-rebound-truth.py); every point needs a row.
+    #[arg(long)]
+    pub truth: Option<PathBuf>,
     /// Noise SD: SIGMA for all experiments or RIG=SIGMA (repeatable).
     #[arg(long, allow_hyphen_values = true)]
     pub noise: Vec<String>,
@@ -95,8 +99,14 @@ pub fn run(args: Args) -> Result<()> {
             }
         }
     }
-    let (_, truth) = truths(&model, &series, &study.current_values(), &hidden)
-        .context("simulating the truth")?;
+    let truth = match &args.truth {
+        Some(path) => truths_from_csv(path, &series)?,
+        None => {
+            truths(&model, &series, &study.current_values(), &hidden)
+                .context("simulating the truth")?
+                .1
+        }
+    };
     let values = add_noise(&series, &truth, &noise, args.seed, DEFAULT_REPLICATES)?;
     // The SDs drawn with are what the written study states (`--noise` overrides the study's).
     let sds = series

@@ -4,7 +4,9 @@
 //! seeded with `seed` (rand_chacha + rand_distr), so the output is a deterministic function of
 //! (study, hidden effect, noise, seed).
 
-use anyhow::{bail, Result};
+use std::path::Path;
+
+use anyhow::{anyhow, bail, Context, Result};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
@@ -70,6 +72,65 @@ pub fn truths(
         out.push(ys?);
     }
     Ok((p, out))
+}
+
+/// One row of a truth file: a rig, a condition value and the true observable there.
+#[derive(Debug, serde::Deserialize)]
+struct TruthRow {
+    experiment: String,
+    condition: f64,
+    truth: f64,
+}
+
+/// Relative tolerance when matching a truth file's condition to a study's.
+const CONDITION_MATCH: f64 = 1e-9;
+
+/// True observables at every point of `series` read from a CSV file (columns `experiment`,
+/// `condition`, `truth`; `#` lines are comments), e.g. made by another engine
+/// (`scripts/liggghts-rebound-truth.py`). Every point needs its row: an error names the first
+/// that has none.
+pub fn truths_from_csv(path: &Path, series: &[Series]) -> Result<Vec<Vec<f64>>> {
+    let mut reader = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .trim(csv::Trim::All)
+        .from_path(path)
+        .with_context(|| format!("cannot read the truth file {}", path.display()))?;
+    let mut rows = Vec::new();
+    for (i, row) in reader.deserialize::<TruthRow>().enumerate() {
+        let row = row.with_context(|| format!("{}: row {}", path.display(), i + 1))?;
+        if !(row.condition.is_finite() && row.truth.is_finite()) {
+            bail!(
+                "{}: row {}: condition and truth must be finite numbers",
+                path.display(),
+                i + 1
+            );
+        }
+        rows.push(row);
+    }
+    series
+        .iter()
+        .map(|s| {
+            s.points
+                .iter()
+                .map(|pt| {
+                    let x = pt.condition.values().next().copied().unwrap_or(f64::NAN);
+                    rows.iter()
+                        .find(|r| {
+                            r.experiment == s.experiment
+                                && (r.condition - x).abs() <= CONDITION_MATCH * x.abs().max(1.0)
+                        })
+                        .map(|r| r.truth)
+                        .ok_or_else(|| {
+                            anyhow!(
+                                "{}: no truth for {} at condition {x}",
+                                path.display(),
+                                s.experiment
+                            )
+                        })
+                })
+                .collect()
+        })
+        .collect()
 }
 
 /// Noisy replicates around `truth` for every point of `series` (replicate count: the

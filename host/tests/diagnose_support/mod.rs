@@ -81,6 +81,15 @@ pub fn case_with_truth(
             size = size.max((a - b).abs() / sd);
         }
     }
+    Case {
+        effect_size_sigma: size,
+        ..case_from_truth(study, truth)
+    }
+}
+
+/// The case of `study` whose true values are `truth` (per experiment, per point), made
+/// elsewhere (e.g. by another engine); its effect size is left at 0.
+pub fn case_from_truth(study: Study, truth: Vec<Vec<f64>>) -> Case {
     // The linearisation depends only on the calibration and the conditions: any noisy copy
     // of the study gives the same one.
     let lin = {
@@ -93,7 +102,7 @@ pub fn case_with_truth(
         study,
         truth,
         lin,
-        effect_size_sigma: size,
+        effect_size_sigma: 0.0,
     }
 }
 
