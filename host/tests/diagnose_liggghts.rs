@@ -1,13 +1,18 @@
-//! Issue 22, must-show 1 on a second engine's data: rebound ratios that LIGGGHTS 3.8 made with
-//! no damping (e = 1) and no cohesion (`testdata/diagnosis-liggghts/rebound-e1.csv`, written
-//! by `scripts/liggghts-rebound-truth.py`; LIGGGHTS is not needed to replay it), with noise
-//! drawn by `synth`'s own function over ten seeds. Both the restitution (1) and the cohesion
-//! (0) lie on an end of their intervals: the fit and the diagnosis run without error, and the
-//! restitution is on its end or within 2 SE of it.
+//! Issue 22 on a second engine's data: true values that LIGGGHTS 3.8 made
+//! (`testdata/diagnosis-liggghts/*.csv`, written by `scripts/liggghts-diagnosis-truth.py`;
+//! LIGGGHTS is not needed to replay them), with noise drawn by `synth`'s own function over
+//! ten seeds.
+//!
+//! - Must-show 1: rebound ratios with no damping (e = 1) and no cohesion (`rebound-e1.csv`).
+//!   Both the restitution (1) and the cohesion (0) lie on an end of their intervals: the fit
+//!   and the diagnosis run without error, and the restitution is on its end or within 2 SE.
+//! - Must-show 2 and 3 for SJKR cohesion on the rebound and press rigs (`cohesion-5e3.csv`,
+//!   `null.csv`): the hidden cohesion ranked first and claimed, the fit within 2 SE of
+//!   LIGGGHTS' value; no claim without it.
 //!
 //! The cohesion is not determined by these data: without damping, SJKR's attraction depends
 //! on the overlap only, so it returns on the way out what it took on the way in. LIGGGHTS'
-//! rebound ratios at e = 1 stay 1 to 1e-8 up to k = 5e4 J/m³ (scripts/liggghts-rebound-truth.py
+//! rebound ratios at e = 1 stay 1 to 1e-8 up to k = 5e4 J/m³ (scripts/liggghts-diagnosis-truth.py
 //! --cohesion-j-m3, 2026-11-27). The fit reports that as a standard error far above any
 //! plausible k, and the test asserts only that its estimate stays in its interval.
 
@@ -26,14 +31,19 @@ fn data_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../testdata/diagnosis-liggghts")
 }
 
-/// The rebound template's `[diagnosis]`, calibrated at `restitution`.
-fn template_at(restitution: f64) -> DiagnosisSection {
-    let mut section = Study::load(&data_dir().join("rebound-template.toml"))
+/// The `[diagnosis]` of the template `file` in the data folder.
+fn section(file: &str) -> DiagnosisSection {
+    Study::load(&data_dir().join(file))
         .unwrap()
         .file()
         .diagnosis
         .clone()
-        .unwrap();
+        .unwrap()
+}
+
+/// The rebound template's `[diagnosis]`, calibrated at `restitution`.
+fn template_at(restitution: f64) -> DiagnosisSection {
+    let mut section = section("rebound-template.toml");
     section.calibration.restitution = restitution;
     section
 }
@@ -109,21 +119,75 @@ fn a_truth_file_must_cover_every_point() {
     );
 }
 
+/// The rebound-and-press template with LIGGGHTS' truths from `file`.
+fn rebound_and_press(file: &str) -> Case {
+    let study = study_of(&section("template.toml"));
+    let truth = truths_from_csv(&data_dir().join(file), &study.series()).unwrap();
+    case_from_truth(study, truth)
+}
+
+/// The SJKR cohesion LIGGGHTS hid in cohesion-5e3.csv, J/m³.
+const HIDDEN_COHESION_J_M3: f64 = 5.0e3;
+
 #[test]
-fn the_rebound_rig_agrees_with_liggghts() {
-    // LIGGGHTS at e = 0.5 with SJKR cohesion 2e4 J/m³ (rebound-e05-cohesion2e4.csv) against
-    // this rig with the same values: the rebound ratios agree within 2e-4, a fiftieth of the
-    // template's noise SD (0.01). Measured: at most 1.26e-4 apart.
-    let section = template_at(0.5);
-    let study = study_of(&section);
-    let theirs = truths_from_csv(
-        &data_dir().join("rebound-e05-cohesion2e4.csv"),
-        &study.series(),
+fn cohesion_hidden_by_liggghts_is_found_and_fitted() {
+    // Rebound and press at six conditions each, made by LIGGGHTS with SJKR cohesion 5e3 J/m³
+    // (the press at 0.1 N moves by 0.50 µm, 10 SE of its mean); the study is calibrated at
+    // LIGGGHTS' e and E, without cohesion.
+    let c = rebound_and_press("cohesion-5e3.csv");
+    let cohesion = effect("cohesion");
+    let (mut first, mut covered) = (0, 0);
+    for seed in 0..SEEDS {
+        let r = c.ranking(seed);
+        if r.top().map(|t| t.effect.name) == Some("cohesion") && r.any_claimed() {
+            first += 1;
+        }
+        let f = c.compare(seed, cohesion, false).with;
+        let k = f.free.iter().position(|p| p.name == "cohesion").unwrap();
+        let (v, se) = (
+            arachis::diagnose::params::value(cohesion, &f.params),
+            f.std_errors[k],
+        );
+        println!("seed {seed}: cohesion {v:.4e} ± {se:.2e} J/m^3");
+        if (v - HIDDEN_COHESION_J_M3).abs() <= 2.0 * se {
+            covered += 1;
+        }
+    }
+    println!("cohesion first and claimed {first}/{SEEDS}; within 2 SE {covered}/{SEEDS}");
+    assert!(first >= 8);
+    assert!(covered >= 8);
+}
+
+#[test]
+fn liggghts_data_without_a_hidden_effect_rarely_claim_one() {
+    let c = rebound_and_press("null.csv");
+    let claims = (0..SEEDS).filter(|&s| c.ranking(s).any_claimed()).count();
+    println!("no hidden effect: a claim in {claims}/{SEEDS}");
+    assert!(claims <= 1);
+}
+
+#[test]
+fn the_rigs_agree_with_liggghts() {
+    // LIGGGHTS at e = 0.5 with SJKR cohesion 5e3 J/m³ (cohesion-5e3.csv) against these rigs
+    // with the same values: rebound ratios within 5e-4 and resting overlaps within 0.01 µm,
+    // a twentieth and a tenth of the template's noise SDs (0.01 and 0.1 µm). Measured on
+    // 2026-11-27: rebound 2.7e-4 apart at most (3.3e-4 without cohesion, null.csv), a
+    // systematic offset: the rig takes 100 steps per contact and symplectic Euler, LIGGGHTS'
+    // deck about 1 000 and velocity Verlet (LIGGGHTS alone moves by 5e-5 from dt 1e-7 to
+    // 1e-6). Issue 18's single-contact cross-check holds 0.5 %.
+    let c = rebound_and_press("cohesion-5e3.csv");
+    let ours = case_for(
+        section("template.toml"),
+        Some(("cohesion", HIDDEN_COHESION_J_M3)),
     )
-    .unwrap();
-    let ours = case_for(section, Some(("cohesion", 2.0e4))).truth;
-    for (t, o) in theirs[0].iter().zip(&ours[0]) {
-        println!("LIGGGHTS {t:.6}, Arachis {o:.6}");
-        assert!((t - o).abs() <= 2e-4, "{t} vs {o}");
+    .truth;
+    for (ei, tolerance) in [(0, 5e-4), (1, 0.01)] {
+        let worst = c.truth[ei]
+            .iter()
+            .zip(&ours[ei])
+            .map(|(t, o)| (t - o).abs())
+            .fold(0.0, f64::max);
+        println!("experiment {ei}: largest difference {worst:.3e}");
+        assert!(worst <= tolerance, "experiment {ei}: {worst} > {tolerance}");
     }
 }

@@ -31,7 +31,7 @@ pub struct Args {
     #[arg(long, conflicts_with = "truth")]
     pub hidden: Vec<String>,
     /// True values from a CSV file (experiment,condition,truth) instead of this model's, e.g.
-    /// made by another engine (scripts/liggghts-rebound-truth.py); every point needs a row.
+    /// made by another engine (scripts/liggghts-diagnosis-truth.py); every point needs a row.
     #[arg(long)]
     pub truth: Option<PathBuf>,
     /// Noise SD: SIGMA for all experiments or RIG=SIGMA (repeatable).

@@ -87,7 +87,7 @@ const CONDITION_MATCH: f64 = 1e-9;
 
 /// True observables at every point of `series` read from a CSV file (columns `experiment`,
 /// `condition`, `truth`; `#` lines are comments), e.g. made by another engine
-/// (`scripts/liggghts-rebound-truth.py`). Every point needs its row: an error names the first
+/// (`scripts/liggghts-diagnosis-truth.py`). Every point needs its row: an error names the first
 /// that has none.
 pub fn truths_from_csv(path: &Path, series: &[Series]) -> Result<Vec<Vec<f64>>> {
     let mut reader = csv::ReaderBuilder::new()
