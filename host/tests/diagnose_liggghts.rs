@@ -19,6 +19,7 @@
 mod diagnose_support;
 use std::path::{Path, PathBuf};
 
+use arachis::diagnose::residuals::lack_of_fit;
 use arachis::diagnose::synth::truths_from_csv;
 use arachis::study::diagnosis::DiagnosisSection;
 use arachis::study::Study;
@@ -136,13 +137,23 @@ fn cohesion_hidden_by_liggghts_is_found_and_fitted() {
     // LIGGGHTS' e and E, without cohesion.
     let c = rebound_and_press("cohesion-5e3.csv");
     let cohesion = effect("cohesion");
-    let (mut first, mut covered) = (0, 0);
+    let (mut first, mut covered, mut in_band) = (0, 0, 0);
     for seed in 0..SEEDS {
         let r = c.ranking(seed);
         if r.top().map(|t| t.effect.name) == Some("cohesion") && r.any_claimed() {
             first += 1;
         }
         let f = c.compare(seed, cohesion, false).with;
+        // Residual RMS over the replicates against the pure-error SD, per experiment.
+        let ratios: Vec<f64> = lack_of_fit(&c.data(seed), &f.predictions)
+            .unwrap()
+            .iter()
+            .map(|l| l.rms / l.sd)
+            .collect();
+        println!("seed {seed}: RMS/SD after the fit {ratios:.3?}");
+        if ratios.iter().all(|r| (0.8..=1.3).contains(r)) {
+            in_band += 1;
+        }
         let k = f.free.iter().position(|p| p.name == "cohesion").unwrap();
         let (v, se) = (
             arachis::diagnose::params::value(cohesion, &f.params),
@@ -153,9 +164,13 @@ fn cohesion_hidden_by_liggghts_is_found_and_fitted() {
             covered += 1;
         }
     }
-    println!("cohesion first and claimed {first}/{SEEDS}; within 2 SE {covered}/{SEEDS}");
+    println!(
+        "cohesion first and claimed {first}/{SEEDS}; within 2 SE {covered}/{SEEDS}; \
+         RMS/SD in [0.8, 1.3] for both rigs {in_band}/{SEEDS}"
+    );
     assert!(first >= 8);
     assert!(covered >= 8);
+    assert!(in_band >= 8);
 }
 
 #[test]
