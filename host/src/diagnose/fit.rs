@@ -312,7 +312,7 @@ pub fn fit(
                 changed = true;
             }
         }
-        if !changed {
+        if !changed && held.contains(&true) {
             // Let go of a held parameter whose cost falls inwards (gradient Jᵀr pointing in).
             let problem = Problem {
                 data,
