@@ -95,6 +95,33 @@ fn a_restitution_of_one_is_diagnosed_and_reported_on_its_limit() {
 }
 
 #[test]
+fn liggghts_values_through_synth_truth_are_diagnosed() {
+    // `synth --truth`: noise on LIGGGHTS' values (SJKR cohesion 5e3 J/m³ hidden); diagnose
+    // finds cohesion, and says when no measurement would tell the runner-up apart (drag, whose
+    // signature on these rigs is nil) instead of proposing a useless one.
+    let dir = tempfile::tempdir().unwrap();
+    let m = dir.path().join("m.toml");
+    let m = m.to_str().unwrap();
+    ok(&arachis(&[
+        "synth",
+        "testdata/diagnosis-liggghts/template.toml",
+        "--truth",
+        "testdata/diagnosis-liggghts/cohesion-5e3.csv",
+        "--seed",
+        "1",
+        "--out",
+        m,
+    ]));
+    let diag = ok(&arachis(&["diagnose", m]));
+    assert!(diag.contains("1    cohesion"), "{diag}");
+    assert!(diag.contains("MISSING"), "{diag}");
+    assert!(
+        diag.contains("to tell 'cohesion' from 'drag' apart: no measurement in the rigs' search ranges would separate them further"),
+        "{diag}"
+    );
+}
+
+#[test]
 fn tutorial_measurements_regenerate_bit_for_bit() {
     // docs/diagnosis-tutorial.md step 1: the committed file is what synth writes.
     let dir = tempfile::tempdir().unwrap();

@@ -20,6 +20,9 @@ use crate::study::Study;
 
 /// Replicates assumed for a proposed extra measurement.
 const PROPOSAL_REPLICATES: usize = 4;
+/// A proposed measurement must raise the separation by this much (standard errors) to be
+/// worth making.
+const MIN_SEPARATION_GAIN: f64 = 0.01;
 
 /// Arguments of `arachis diagnose`.
 #[derive(Debug, clap::Args)]
@@ -160,18 +163,26 @@ pub fn run(args: Args) -> Result<()> {
             sd,
             PROPOSAL_REPLICATES,
         )? {
-            println!(
-                "to tell '{}' from '{}' apart: measure {} at {} = {:.4} ({} replicates); \
+            if p.separation_after - p.separation_now < MIN_SEPARATION_GAIN {
+                println!(
+                    "to tell '{}' from '{}' apart: no measurement in the rigs' search ranges \
+                     would separate them further (separation {:.2} standard errors)",
+                    a.effect.name, b.effect.name, p.separation_now
+                );
+            } else {
+                println!(
+                    "to tell '{}' from '{}' apart: measure {} at {} = {:.4} ({} replicates); \
                  separation {:.2} -> {:.2} standard errors",
-                a.effect.name,
-                b.effect.name,
-                data.experiments[p.experiment].rig,
-                data.experiments[p.experiment].condition.1,
-                p.condition,
-                PROPOSAL_REPLICATES,
-                p.separation_now,
-                p.separation_after
-            );
+                    a.effect.name,
+                    b.effect.name,
+                    data.experiments[p.experiment].rig,
+                    data.experiments[p.experiment].condition.1,
+                    p.condition,
+                    PROPOSAL_REPLICATES,
+                    p.separation_now,
+                    p.separation_after
+                );
+            }
         }
     }
     Ok(())
