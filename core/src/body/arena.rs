@@ -29,9 +29,11 @@ use crate::num::Scalar;
 
 /// Neighbour-list entries per sphere that [`StorageLengths::for_spheres`] provides, on
 /// average over the world (the list is packed, so a crowded sphere borrows room from a lonely
-/// one). A sphere of a settled monodisperse bed owns about 3 entries (each pair is owned by
-/// its lower id; DESIGN §8 bed, skin R/8) and a pod sphere in a pile of clumps up to about 8;
-/// the rest is margin. Running out is [`crate::error::StepError::ContactCapacity`].
+/// one). Each pair is owned by its lower id. With the skin R/4, the list held at most 2.9
+/// entries per sphere on the DESIGN §8 bed and 2.6 in the quick pod pile (averages over the
+/// world, the largest over every rebuild; core/API_NOTES.md). A single pod sphere in a pile
+/// of clumps owns up to about 8; the rest is margin. Running out is
+/// [`crate::error::StepError::ContactCapacity`].
 pub const DEFAULT_NEIGHBOURS_PER_SPHERE: usize = 12;
 
 /// Grid cells per sphere that [`StorageLengths::for_spheres`] provides (plus

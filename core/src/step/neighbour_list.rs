@@ -47,9 +47,11 @@ use crate::wall::Wall;
 /// [`WALL_PARTNER_FLAG`] with wall < 16, so the bit is free in every key.
 pub const LIVE_FLAG: u32 = 0x4000_0000;
 
-/// The skin is R_max / `SKIN_DIVISOR` (0.5 mm for the 4 mm pods of the bench bed): larger
-/// skins rebuild less often but hold more non-touching entries per sphere.
-pub const SKIN_DIVISOR: i32 = 8;
+/// The skin is R_max / `SKIN_DIVISOR` (1 mm for the 4 mm spheres of the bench bed): larger
+/// skins rebuild less often but hold more non-touching entries per sphere. R/4 was the
+/// fastest of R/2 … R/16 on the DESIGN §8 bed and on the quick pod pile (core/API_NOTES.md,
+/// 2026-11-27); in fixed point the results do not depend on it.
+pub const SKIN_DIVISOR: i32 = 4;
 
 /// Below a reach of 2^15 mm the rebuild squares distances in the unchecked arithmetic
 /// (|d|² < 3·2^30 mm² stays in range).
