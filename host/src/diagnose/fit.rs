@@ -58,14 +58,45 @@ struct Problem<'a> {
     weights: DVector<f64>,
 }
 
-impl Problem<'_> {
-    /// The bench priors on free parameters, with the parameter's index in `free`: each adds
-    /// a residual (θ − mean)/sd after the data's.
+/// The bench priors of `data` on parameters of `free`, with the parameter's index in `free`:
+/// each adds a residual (θ − mean)/sd after the data's.
+fn priors_on<'d>(
+    data: &'d Dataset,
+    free: &'d [&'static ParamInfo],
+) -> impl Iterator<Item = (usize, &'d BenchPrior)> + 'd {
+    data.priors.iter().filter_map(move |prior| {
+        let k = free.iter().position(|f| f.key == prior.param.key)?;
+        Some((k, prior))
+    })
+}
+
+impl<'a> Problem<'a> {
+    fn new(
+        data: &'a Dataset,
+        model: &'a Model<'a>,
+        start: &ParameterValues,
+        free: &[&'static ParamInfo],
+        weights: &DVector<f64>,
+    ) -> Self {
+        Problem {
+            data,
+            model,
+            start: start.clone(),
+            free: free.to_vec(),
+            weights: weights.clone(),
+        }
+    }
+
+    /// The free parameters of `p`, scaled by their catalogue scale (the solver's vector).
+    fn scaled(&self, p: &ParameterValues) -> DVector<f64> {
+        DVector::from_iterator(
+            self.free.len(),
+            self.free.iter().map(|i| value(i, p) / i.scale),
+        )
+    }
+
     fn priors(&self) -> impl Iterator<Item = (usize, &BenchPrior)> {
-        self.data.priors.iter().filter_map(|prior| {
-            let k = self.free.iter().position(|f| f.key == prior.param.key)?;
-            Some((k, prior))
-        })
+        priors_on(self.data, &self.free)
     }
 
     fn params(&self, u: &DVector<f64>) -> ParameterValues {
@@ -236,10 +267,8 @@ fn prior_terms(
         .iter()
         .map(|p| (p.param, p.z(value(p.param, params))))
         .collect();
-    let sse = z
-        .iter()
-        .filter(|(param, _)| free.iter().any(|f| f.key == param.key))
-        .map(|(_, z)| z * z)
+    let sse = priors_on(data, free)
+        .map(|(_, p)| p.z(value(p.param, params)).powi(2))
         .sum();
     (sse, z)
 }
@@ -247,12 +276,7 @@ fn prior_terms(
 /// Residuals a fit of `free` to `data` has: one per condition and one per bench prior on a
 /// free parameter.
 pub fn residual_count(data: &Dataset, free: &[&'static ParamInfo]) -> usize {
-    data.obs.len()
-        + data
-            .priors
-            .iter()
-            .filter(|p| free.iter().any(|f| f.key == p.param.key))
-            .count()
+    data.obs.len() + priors_on(data, free).count()
 }
 
 /// Fit the parameters `free` from `start` (which also holds the fixed ones).
@@ -314,15 +338,8 @@ pub fn fit(
         }
         if !changed && held.contains(&true) {
             // Let go of a held parameter whose cost falls inwards (gradient Jᵀr pointing in).
-            let problem = Problem {
-                data,
-                model,
-                start: at.clone(),
-                free: free.to_vec(),
-                weights: weights.clone(),
-            };
-            let u =
-                DVector::from_iterator(free.len(), free.iter().map(|i| value(i, &at) / i.scale));
+            let problem = Problem::new(data, model, &at, free, &weights);
+            let u = problem.scaled(&at);
             let gradient = problem.jacobian(&u)?.transpose() * problem.apply(&u)?;
             for (k, info) in free.iter().enumerate() {
                 let (lo, hi) = interval(info);
@@ -338,14 +355,8 @@ pub fn fit(
             break;
         }
     }
-    let problem = Problem {
-        data,
-        model,
-        start: at.clone(),
-        free: free.to_vec(),
-        weights,
-    };
-    let u = DVector::from_iterator(free.len(), free.iter().map(|i| value(i, &at) / i.scale));
+    let problem = Problem::new(data, model, &at, free, &weights);
+    let u = problem.scaled(&at);
     let params = problem.params(&u);
     let predictions = predict(data, model, &params)?;
     let sse = data.standardised(&predictions).iter().map(|r| r * r).sum();
@@ -390,14 +401,8 @@ fn gauss_newton(
     free: &[&'static ParamInfo],
     weights: &DVector<f64>,
 ) -> Result<(ParameterValues, Vec<&'static ParamInfo>, u64)> {
-    let problem = Problem {
-        data,
-        model,
-        start: start.clone(),
-        free: free.to_vec(),
-        weights: weights.clone(),
-    };
-    let u0 = DVector::from_iterator(free.len(), free.iter().map(|i| value(i, start) / i.scale));
+    let problem = Problem::new(data, model, start, free, weights);
+    let u0 = problem.scaled(start);
     let solver = GaussNewton::new().with_tolerance(COST_TOLERANCE)?;
     let res = Executor::new(problem, solver)
         .configure(|s| s.param(u0).max_iters(MAX_ITERATIONS))

@@ -116,25 +116,15 @@ impl Ranking {
 
 /// Rank the candidates of `lin` against the measurements `data`.
 pub fn rank(data: &Dataset, lin: &Linearisation) -> Result<Ranking> {
-    let n = data.obs.len();
-    let q = lin.prior_rows.len();
-    let w = DVector::from_iterator(n, data.obs.iter().map(|o| 1.0 / o.se_mean));
+    let w: Vec<f64> = data.obs.iter().map(|o| 1.0 / o.se_mean).collect();
     let mut r = data.standardised(&lin.predictions);
     r.extend(lin.prior_rows.iter().map(|p| p.residual));
     let r = DVector::from_vec(r);
-    let mut jt = scale_rows(&lin.calibrated_jacobian, &w).resize_vertically(n + q, 0.0);
-    for (i, p) in lin.prior_rows.iter().enumerate() {
-        jt[(n + i, p.column)] = p.inverse_sd;
-    }
-    let basis = column_basis(&jt);
+    let basis = column_basis(&lin.weighted_calibrated(&w));
     let normal = Normal::new(0.0, 1.0)?;
     let mut cands = Vec::new();
     for (k, effect) in lin.candidates.iter().enumerate() {
-        let s = lin
-            .candidate_jacobian
-            .column(k)
-            .component_mul(&w)
-            .resize_vertically(n + q, 0.0);
+        let s = lin.weighted_candidate(k, &w);
         let full = s.norm();
         let perp = &s - &basis * (basis.transpose() * &s);
         let pn = perp.norm();

@@ -8,7 +8,7 @@
 //! on the thread count or on where it ran.
 
 use anyhow::{bail, Result};
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DVector};
 
 use super::model::Model;
 use super::params::{interval, set, value, ParamInfo, Role};
@@ -41,11 +41,8 @@ pub fn jacobian(
         .map(|info| Ok((info.fd_step, Difference::at(info, value(info, p))?)))
         .collect::<Result<_>>()?;
     let mut runs = Vec::new();
-    for (info, &(h, difference)) in params.iter().zip(&columns) {
-        let v = value(info, p);
-        for &sign in difference.shifts() {
-            let mut shifted = p.clone();
-            set(info, &mut shifted, v + sign * h);
+    for (info, &(_, difference)) in params.iter().zip(&columns) {
+        for shifted in difference.stepped(info, p) {
             runs.extend(
                 data.obs
                     .iter()
@@ -58,11 +55,11 @@ pub fn jacobian(
     let mut k = 0;
     for &(h, difference) in &columns {
         let m = difference.shifts().len();
-        let ys: Vec<&[f64]> = (0..m).map(|s| &y[k + s * n..k + (s + 1) * n]).collect();
+        let block = &y[k..k + m * n];
         k += m * n;
         cols.extend((0..n).map(|i| {
-            let at_shifts: Vec<f64> = ys.iter().map(|y| y[i]).collect();
-            difference.derivative(h, &at_shifts, at[i])
+            let ys = [block[i], block[(m - 1) * n + i]];
+            difference.derivative(h, &ys[..m], at[i])
         }));
     }
     Ok(DMatrix::from_column_slice(n, params.len(), &cols))
@@ -109,6 +106,19 @@ impl Difference {
         }
     }
 
+    /// `p` with `info` moved by each step of [`Difference::shifts`], in that order.
+    pub fn stepped(self, info: &ParamInfo, p: &ParameterValues) -> Vec<ParameterValues> {
+        let v = value(info, p);
+        self.shifts()
+            .iter()
+            .map(|sign| {
+                let mut q = p.clone();
+                set(info, &mut q, v + sign * info.fd_step);
+                q
+            })
+            .collect()
+    }
+
     /// ∂ŷ/∂θ from the predictions at the steps (`ys`, in [`Difference::shifts`] order) and
     /// at θ (`at`), for step `h`.
     pub fn derivative(self, h: f64, ys: &[f64], at: f64) -> f64 {
@@ -150,6 +160,33 @@ pub struct PriorRow {
 }
 
 impl Linearisation {
+    /// J̃: the calibrated parameters' sensitivities with each condition's row scaled by its
+    /// weight `w`, then a row per bench prior (1/sd in its parameter's column).
+    pub fn weighted_calibrated(&self, w: &[f64]) -> DMatrix<f64> {
+        let n = w.len();
+        let mut jt = DMatrix::from_fn(n, self.calibrated.len(), |i, j| {
+            self.calibrated_jacobian[(i, j)] * w[i]
+        })
+        .resize_vertically(n + self.prior_rows.len(), 0.0);
+        for (i, p) in self.prior_rows.iter().enumerate() {
+            jt[(n + i, p.column)] = p.inverse_sd;
+        }
+        jt
+    }
+
+    /// s̃: candidate `k`'s sensitivity with each condition scaled by its weight `w`, and 0 in
+    /// the rows of the bench priors (an effect does not move a bench value).
+    pub fn weighted_candidate(&self, k: usize, w: &[f64]) -> DVector<f64> {
+        let n = w.len();
+        DVector::from_fn(n + self.prior_rows.len(), |i, _| {
+            if i < n {
+                self.candidate_jacobian[(i, k)] * w[i]
+            } else {
+                0.0
+            }
+        })
+    }
+
     /// Predictions and sensitivities at the calibration `p`: the base parameters `p` sets
     /// and the effects already on are calibrated, the effects off are candidates.
     pub fn new(data: &Dataset, model: &Model<'_>, p: &ParameterValues) -> Result<Self> {

@@ -13,7 +13,7 @@ use anyhow::Result;
 use nalgebra::{DMatrix, DVector};
 
 use super::model::Model;
-use super::params::{set, value, ParamInfo};
+use super::params::{value, ParamInfo};
 use super::residuals::Dataset;
 use super::score::column_basis;
 use super::sensitivity::{Difference, Linearisation};
@@ -65,7 +65,6 @@ pub fn propose(
     noise_sd: impl Fn(usize) -> Option<f64>,
     replicates: usize,
 ) -> Result<Option<Proposal>> {
-    let n = data.obs.len();
     let w: Vec<f64> = data.obs.iter().map(|o| 1.0 / o.se_mean).collect();
     let col = |k: usize| -> usize {
         lin.candidates
@@ -78,29 +77,12 @@ pub fn propose(
         return Ok(None);
     }
     // The weighted sensitivities, with a row per bench prior (as in the score test).
-    let rows = n + lin.prior_rows.len();
-    let jt = DMatrix::from_fn(rows, lin.calibrated.len(), |i, j| {
-        if i < n {
-            lin.calibrated_jacobian[(i, j)] * w[i]
-        } else {
-            let prior = &lin.prior_rows[i - n];
-            if prior.column == j {
-                prior.inverse_sd
-            } else {
-                0.0
-            }
-        }
-    });
-    let effect_rows = |col: usize| {
-        DVector::from_fn(rows, |i, _| {
-            if i < n {
-                lin.candidate_jacobian[(i, col)] * w[i]
-            } else {
-                0.0
-            }
-        })
-    };
-    let (sa, sb) = (effect_rows(ia), effect_rows(ib));
+    let jt = lin.weighted_calibrated(&w);
+    let rows = jt.nrows();
+    let (sa, sb) = (
+        lin.weighted_candidate(ia, &w),
+        lin.weighted_candidate(ib, &w),
+    );
     let theta_a = if a.1 > 0.0 { a.1 } else { a.0.fd_step };
     let theta_b = if b.1 > 0.0 { b.1 } else { b.0.fd_step };
     let now = separation(&jt, &sa, &sb, theta_a, theta_b);
@@ -134,11 +116,12 @@ pub fn propose(
     for (ei, _, at, _) in &grid {
         runs.push((*ei, at, p.clone()));
         for (info, difference) in &stepped {
-            for sign in difference.shifts() {
-                let mut q = p.clone();
-                set(info, &mut q, value(info, p) + sign * info.fd_step);
-                runs.push((*ei, at, q));
-            }
+            runs.extend(
+                difference
+                    .stepped(info, p)
+                    .into_iter()
+                    .map(|q| (*ei, at, q)),
+            );
         }
     }
     let y = model.simulate_all(&runs)?;
