@@ -300,3 +300,56 @@ fn a_run_cache_gives_the_same_report_and_is_replayed() {
         assert_eq!(replayed, plain, "{command:?}");
     }
 }
+
+#[test]
+fn one_rig_at_one_condition_cannot_tell_rolling_resistance_from_cohesion() {
+    // Issue 22: LIGGGHTS' rolling data (EPSD μr 0.01 hidden) at one launch speed only. EPSD
+    // rolling resistance, cohesion and drag each explain the one slower mean, so the tool
+    // says it cannot tell them apart and names the rig and condition that would.
+    let dir = tempfile::tempdir().unwrap();
+    let template = dir.path().join("roll-one-speed.toml");
+    let text = std::fs::read_to_string(
+        std::path::Path::new(cli_support::REPO_ROOT)
+            .join("testdata/diagnosis-liggghts/roll-template.toml"),
+    )
+    .unwrap();
+    let head = &text[..text.find("[[diagnosis.experiment.point]]").unwrap()];
+    std::fs::write(
+        &template,
+        format!("{head}[[diagnosis.experiment.point]]\ncondition = 0.4\nreplicates = 4\n"),
+    )
+    .unwrap();
+    let m = dir.path().join("m.toml");
+    let m = m.to_str().unwrap();
+    ok(&arachis(&[
+        "synth",
+        template.to_str().unwrap(),
+        "--truth",
+        "testdata/diagnosis-liggghts/roll-epsd-0.01.csv",
+        "--seed",
+        "1",
+        "--out",
+        m,
+    ]));
+    let diag = ok(&arachis(&["diagnose", m]));
+    assert!(
+        diag.contains("NOT DISTINGUISHABLE: cohesion and epsd_rolling"),
+        "{diag}"
+    );
+    assert!(
+        diag.contains("but these data cannot tell"),
+        "no single best candidate may be named: {diag}"
+    );
+    // The proposal is another launch speed of the roll rig, away from the measured 0.4 m/s.
+    let proposal = diag
+        .lines()
+        .find(|l| l.starts_with("to tell"))
+        .unwrap_or_else(|| panic!("no proposal: {diag}"));
+    let speed: f64 = proposal
+        .split("measure roll at launch speed, m/s = ")
+        .nth(1)
+        .and_then(|rest| rest.split_whitespace().next())
+        .and_then(|x| x.parse().ok())
+        .unwrap_or_else(|| panic!("{proposal}"));
+    assert!((speed - 0.4).abs() > 0.2, "{proposal}");
+}

@@ -43,9 +43,11 @@ fn full_design_identifies_every_effect() {
     // The tutorial design (rebound, press, fall) tests every effect but hysteresis: in the
     // rebound its signature is a speed-independent restitution drop, which the calibrated e
     // absorbs entirely, and the press never unloads. Adding an unload experiment (the press
-    // conditions) makes it testable too.
+    // conditions) makes it testable too. No experiment of the design turns the sphere, so
+    // rolling resistance is no candidate; a roll experiment adds it, testable.
     let c = case(None);
     let r = c.ranking(0);
+    assert!(r.candidates.iter().all(|c| c.effect.name != "epsd_rolling"));
     for cand in &r.candidates {
         println!(
             "tutorial design: {} identifiable fraction {:.3}",
@@ -67,13 +69,24 @@ fn full_design_identifies_every_effect() {
         .clone();
     unload.kind = "unload".to_owned();
     study.experiment.push(unload);
+    study.experiment.push(roll_experiment());
     let r = case_for(study, None).ranking(0);
+    assert!(r.candidates.iter().any(|c| c.effect.name == "epsd_rolling"));
     for cand in &r.candidates {
         println!(
-            "tutorial design + unload: {} identifiable fraction {:.3}",
+            "tutorial design + unload + roll: {} identifiable fraction {:.3}",
             cand.effect.name, cand.identifiable_fraction
         );
         assert!(matches!(cand.status, Status::Tested { .. }));
     }
     assert!(r.indistinguishable.is_empty());
+}
+
+/// The roll experiment of `testdata/diagnosis-liggghts/roll-template.toml` (six launch
+/// speeds, four replicates).
+fn roll_experiment() -> arachis::study::diagnosis::DiagnosisExperiment {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../testdata/diagnosis-liggghts/roll-template.toml");
+    let study = arachis::study::Study::load(&path).unwrap();
+    study.file().diagnosis.clone().unwrap().experiment[0].clone()
 }

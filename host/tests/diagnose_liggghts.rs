@@ -10,6 +10,10 @@
 //!   `null.csv`): the hidden cohesion ranked first and claimed, the fit within 2 SE of
 //!   LIGGGHTS' value; no claim without it.
 //!
+//! - Must-show 2 and 3 for EPSD rolling resistance on the roll rig (`roll-epsd-0.01.csv`,
+//!   `roll-null.csv`; LIGGGHTS' `rolling_friction epsd2`): found, claimed and fitted; no claim
+//!   without it.
+//!
 //! The cohesion is not determined by these data: without damping, SJKR's attraction depends
 //! on the overlap only, so it returns on the way out what it took on the way in. LIGGGHTS'
 //! rebound ratios at e = 1 stay 1 to 1e-8 up to k = 5e4 J/m³ (scripts/liggghts-diagnosis-truth.py
@@ -205,4 +209,88 @@ fn the_rigs_agree_with_liggghts() {
         println!("experiment {ei}: largest difference {worst:.3e}");
         assert!(worst <= tolerance, "experiment {ei}: {worst} > {tolerance}");
     }
+}
+
+/// The roll template with LIGGGHTS' truths from `file`.
+fn roll(file: &str) -> Case {
+    let study = study_of(&section("roll-template.toml"));
+    let truth = truths_from_csv(&data_dir().join(file), &study.series()).unwrap();
+    case_from_truth(study, truth)
+}
+
+/// The rolling friction LIGGGHTS' `epsd2` used in roll-epsd-0.01.csv.
+const HIDDEN_ROLLING_FRICTION: f64 = 0.01;
+
+#[test]
+fn the_roll_rig_agrees_with_liggghts() {
+    // LIGGGHTS' epsd2 at μr 0.01 against the rig with the core's EPSD at 0.01: speed ratios
+    // within 1e-3, a tenth of the template's noise SD (0.01). Without rolling resistance both
+    // keep the launch speed (roll-null.csv holds 1 at every speed).
+    let c = roll("roll-epsd-0.01.csv");
+    let ours = case_for(
+        section("roll-template.toml"),
+        Some(("epsd_rolling", HIDDEN_ROLLING_FRICTION)),
+    )
+    .truth;
+    let worst = c.truth[0]
+        .iter()
+        .zip(&ours[0])
+        .map(|(t, o)| (t - o).abs())
+        .fold(0.0, f64::max);
+    println!("LIGGGHTS {:?}\nArachis  {:?}", c.truth[0], ours[0]);
+    println!("largest difference {worst:.3e}");
+    assert!(worst <= 1e-3, "{worst}");
+    // The smallest launch speed, 0.1 m/s, loses 14 % of its speed: the effect is 28 SE of
+    // that point's mean (noise SD 0.01, 4 replicates).
+    assert!(c.truth[0][0] < 0.9);
+}
+
+#[test]
+fn rolling_resistance_hidden_by_liggghts_is_found_and_fitted() {
+    let c = roll("roll-epsd-0.01.csv");
+    let rolling = effect("epsd_rolling");
+    let (mut first, mut covered, mut in_band) = (0, 0, 0);
+    for seed in 0..SEEDS {
+        let r = c.ranking(seed);
+        if r.top().map(|t| t.effect.name) == Some("epsd_rolling") && r.any_claimed() {
+            first += 1;
+        }
+        let f = c.compare(seed, rolling, false).with;
+        let ratios: Vec<f64> = lack_of_fit(&c.data(seed), &f.predictions)
+            .unwrap()
+            .iter()
+            .map(|l| l.rms / l.sd)
+            .collect();
+        let k = f
+            .free
+            .iter()
+            .position(|p| p.name == "epsd_rolling")
+            .unwrap();
+        let (v, se) = (
+            arachis::diagnose::params::value(rolling, &f.params),
+            f.std_errors[k],
+        );
+        println!("seed {seed}: mu_r {v:.5} ± {se:.1e}; RMS/SD after the fit {ratios:.3?}");
+        if ratios.iter().all(|r| (0.8..=1.3).contains(r)) {
+            in_band += 1;
+        }
+        if (v - HIDDEN_ROLLING_FRICTION).abs() <= 2.0 * se {
+            covered += 1;
+        }
+    }
+    println!(
+        "EPSD rolling first and claimed {first}/{SEEDS}; within 2 SE {covered}/{SEEDS}; \
+         RMS/SD in [0.8, 1.3] {in_band}/{SEEDS}"
+    );
+    assert!(first >= 8);
+    assert!(covered >= 8);
+    assert!(in_band >= 8);
+}
+
+#[test]
+fn rolling_data_without_a_hidden_effect_rarely_claim_one() {
+    let c = roll("roll-null.csv");
+    let claims = (0..SEEDS).filter(|&s| c.ranking(s).any_claimed()).count();
+    println!("no hidden effect: a claim in {claims}/{SEEDS}");
+    assert!(claims <= 1);
 }

@@ -106,11 +106,32 @@ pub fn run(args: Args) -> Result<()> {
         )?;
     }
     match r.top() {
-        Some(t) if r.any_claimed() => writeln!(
-            s,
-            "\nverdict: the model lacks an effect; best candidate '{}' (try: arachis fit STUDY --with {})",
-            t.effect.name, t.effect.name
-        )?,
+        Some(t) if r.any_claimed() => {
+            // The effects the data cannot tell from the top one share its verdict.
+            let twins: Vec<&str> = r
+                .indistinguishable
+                .iter()
+                .filter_map(|&(a, b, _)| match t.effect.name {
+                    n if n == a => Some(b),
+                    n if n == b => Some(a),
+                    _ => None,
+                })
+                .collect();
+            if twins.is_empty() {
+                writeln!(
+                    s,
+                    "\nverdict: the model lacks an effect; best candidate '{}' (try: arachis fit STUDY --with {})",
+                    t.effect.name, t.effect.name
+                )?
+            } else {
+                writeln!(
+                    s,
+                    "\nverdict: the model lacks an effect, but these data cannot tell '{}' from '{}'",
+                    t.effect.name,
+                    twins.join("' or '")
+                )?
+            }
+        }
         Some(_) => writeln!(
             s,
             "\nverdict: no missing effect can be claimed at family alpha {FAMILY_ALPHA}"

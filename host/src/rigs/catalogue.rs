@@ -20,6 +20,7 @@ pub const RIGS: &[&RigKind] = &[
     &super::press::KIND,
     &super::fall::KIND,
     &super::unload::KIND,
+    &super::roll::KIND,
 ];
 
 /// The rig named `name`.

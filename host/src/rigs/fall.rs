@@ -23,6 +23,7 @@ pub const TEST: SingleSphereTest = SingleSphereTest {
     },
     condition: ConditionKey::new("fall_height_m", "fall height, m", Limits::Positive)
         .within((0.05, 5.0), (0.1, 3.0)),
+    parameters: PARAMETERS_WITHOUT_ROLLING,
     simulate,
 };
 

@@ -11,7 +11,7 @@
 //! | `pull_off` | [`pull_off`] | detachment force of a pod off its stalk (seed 001 §2.3) |
 //! | `harvest` | [`harvest`] | loss rate through a picking drum (seed 001 §3.3) |
 //! | `bench_bed` | [`bench_bed`] | bed height of pod spheres poured into a cylinder (DESIGN §8) |
-//! | `rebound`, `press`, `fall`, `unload` | [`rebound`], [`press`], [`fall`], [`unload`] | one pod sphere: restitution, overlap, fall time |
+//! | `rebound`, `press`, `fall`, `unload`, `roll` | [`rebound`], [`press`], [`fall`], [`unload`], [`roll`] | one pod sphere: restitution, overlap, fall time, rolling speed |
 //!
 //! What rigs share lives beside them: the pod world ([`pod_world`], [`pod_bench`]), the
 //! single sphere ([`single_sphere`]); [`repose_surrogate`] is a test stand-in for the repose
@@ -36,5 +36,6 @@ pub mod rebound;
 pub mod repose_cylinder;
 pub mod repose_picture;
 pub mod repose_surrogate;
+pub mod roll;
 pub mod single_sphere;
 pub mod unload;

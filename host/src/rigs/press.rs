@@ -29,6 +29,7 @@ pub const TEST: SingleSphereTest = SingleSphereTest {
     },
     condition: ConditionKey::new("load_n", "load, N", Limits::Positive)
         .within((5.0e-4, 0.5), (1.0e-3, 0.2)),
+    parameters: PARAMETERS_WITHOUT_ROLLING,
     simulate,
 };
 
@@ -43,18 +44,14 @@ fn simulate(load_n: f64, p: &ModelParams) -> Result<f64, RigError> {
 /// Starts at rest at the Hertz overlap of `load_n` (N) and settles under
 /// `fraction`·`load_n`; the resting overlap, µm.
 pub fn settle(load_n: f64, p: &ModelParams, fraction: f64) -> Result<f64, RigError> {
-    let m = mass_kg();
-    let es = e_star_pa(p);
     let r = SPHERE_RADIUS_M;
     // Start at the Hertz overlap of the load, at rest.
-    let alpha0 = (3.0 * load_n / (4.0 * es * r.sqrt())).powf(2.0 / 3.0);
+    let alpha0 = hertz_overlap_m(p, load_n);
     let mut a = one_sphere_arena();
     let mut w = floor_world(&mut a, p, SETTLING_RESTITUTION, r - alpha0, 0.0)?;
-    w.set_gravity_m_s2([0.0, 0.0, -fraction * load_n / m])
+    w.set_gravity_m_s2([0.0, 0.0, -fraction * load_n / mass_kg()])
         .map_err(core_err)?;
-    // Small-oscillation period with the tangent stiffness 2E*a, a = √(Rα).
-    let k = 2.0 * es * (r * alpha0).sqrt();
-    let period = 2.0 * std::f64::consts::PI * (m / k).sqrt();
+    let period = resting_period_s(p, alpha0);
     let dt = (period / STEPS_PER_PERIOD).min(0.9 * w.max_timestep_s());
     w.set_timestep_s(dt).map_err(core_err)?;
     let n = ((PERIODS * period / dt) as u64).min(MAX_STEPS);

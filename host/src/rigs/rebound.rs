@@ -24,6 +24,7 @@ pub const TEST: SingleSphereTest = SingleSphereTest {
     },
     condition: ConditionKey::new("drop_height_m", "drop height, m", Limits::Positive)
         .within((0.005, 3.0), (0.02, 2.0)),
+    parameters: PARAMETERS_WITHOUT_ROLLING,
     simulate,
 };
 

@@ -1,5 +1,5 @@
-//! What the four cheap rigs of the diagnosis loop share (rebound, press, fall, unload, one
-//! file each): one pod sphere (R 4 mm, seed 000 §3.1 pod
+//! What the five cheap rigs of the diagnosis loop share (rebound, press, fall, unload, roll,
+//! one file each): one pod sphere (R 4 mm, seed 000 §3.1 pod
 //! material with the calibrated Young's modulus) and, where needed, a steel floor, simulated
 //! by the fixed-point core in a few hundred to a few thousand steps.
 //!
@@ -9,6 +9,7 @@
 //! | `press` | static load on the sphere, N | resting overlap on the floor, µm | Young's modulus, cohesion |
 //! | `fall` | drop height, m | free-fall time, ms | drag |
 //! | `unload` | peak load, N | resting overlap after unloading to half the peak, µm | Young's modulus, cohesion, hysteretic |
+//! | `roll` | launch speed, m/s | speed after 0.2 s of rolling / launch speed, - | EPSD rolling resistance, drag |
 //!
 //! The rebound run starts at first touch with the impact speed (the free flight before it is
 //! not simulated); the press run applies the load as a body force (gravity scaled to F/m) and
@@ -73,6 +74,11 @@ pub struct ModelParams {
     /// when 0, so study files from before the effect existed are reproduced byte for byte.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub plastic_fraction: f64,
+    /// Effect: EPSD rolling resistance, rolling friction coefficient μr (0 = off; Ai et al.
+    /// 2011 type C without its dashpot, the limit torque μr·R*·Fn of LIGGGHTS' `epsd2`). Not
+    /// written when 0, as `plastic_fraction`.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub epsd_rolling_friction: f64,
 }
 
 /// serde helper: skip an effect parameter that is off.
@@ -81,8 +87,9 @@ fn is_zero(x: &f64) -> bool {
 }
 
 /// The parameters with their roles and finite-difference steps: the base parameters first,
-/// then the candidate effects (they map onto the core's [`arachis_core::effects`]).
-pub const PARAMETERS: [RigParameter; 6] = [
+/// then the candidate effects (they map onto the core's [`arachis_core::effects`]); the
+/// rolling effects last ([`ROLLING_EFFECTS`]).
+pub const PARAMETERS: [RigParameter; 7] = [
     RigParameter {
         name: "restitution",
         key: "restitution",
@@ -143,7 +150,27 @@ pub const PARAMETERS: [RigParameter; 6] = [
         limits: Limits::FractionBelowOne,
         about: "hysteretic (plastic) normal contact, plastic fraction of the peak overlap (Walton & Braun 1986)",
     },
+    RigParameter {
+        name: "epsd_rolling",
+        key: "epsd_rolling_friction",
+        unit: "-",
+        role: Role::Effect,
+        fd_step: 0.002,
+        scale: 0.02,
+        limits: Limits::NonNegative,
+        about: "EPSD rolling resistance, torque limit mu_r R* Fn (Ai et al. 2011; LIGGGHTS epsd2)",
+    },
 ];
+
+/// How many effects at the end of [`PARAMETERS`] act only on a turning sphere.
+pub const ROLLING_EFFECTS: usize = 1;
+
+/// The parameters that can act in a rig whose sphere does not turn (rebound, press, fall,
+/// unload): all but the rolling effects. A diagnosis offers as candidates only the effects
+/// its rigs declare, so a study without a rolling experiment is not offered rolling
+/// resistance.
+pub const PARAMETERS_WITHOUT_ROLLING: &[RigParameter] =
+    PARAMETERS.split_at(PARAMETERS.len() - ROLLING_EFFECTS).0;
 
 impl ModelParams {
     /// The value of the parameter keyed `key`.
@@ -155,6 +182,7 @@ impl ModelParams {
             "cohesion_j_m3" => self.cohesion_j_m3,
             "drag_coefficient" => self.drag_coefficient,
             "plastic_fraction" => self.plastic_fraction,
+            "epsd_rolling_friction" => self.epsd_rolling_friction,
             _ => return None,
         })
     }
@@ -191,6 +219,7 @@ impl ModelParams {
             cohesion_j_m3: get("cohesion_j_m3").unwrap_or(0.0),
             drag_coefficient: get("drag_coefficient").unwrap_or(0.0),
             plastic_fraction: get("plastic_fraction").unwrap_or(0.0),
+            epsd_rolling_friction: get("epsd_rolling_friction").unwrap_or(0.0),
         };
         p.validate().map_err(RigError)?;
         Ok(p)
@@ -261,7 +290,8 @@ pub fn core_err(e: impl std::fmt::Display) -> RigError {
     RigError(format!("core: {e}"))
 }
 
-/// A pod sphere over a steel floor (z = 0), normal terms only, effects from `p`.
+/// A pod sphere over a steel floor (z = 0), normal terms only, effects from `p`; the sphere
+/// at height `z_m` (m) moving at `vz_m_s` (m/s) along z.
 pub fn floor_world<'a>(
     a: &'a mut OwnedStorage<Fx>,
     p: &ModelParams,
@@ -269,18 +299,48 @@ pub fn floor_world<'a>(
     z_m: f64,
     vz_m_s: f64,
 ) -> Result<World<'a, Fx>, RigError> {
+    let launch = Launch {
+        z_m,
+        velocity_m_s: [0.0, 0.0, vz_m_s],
+        spin_rad_s: [0.0; 3],
+    };
+    floor_world_with(a, p, restitution, None, launch)
+}
+
+/// Where and how the sphere of a floor world starts.
+#[derive(Debug, Clone, Copy)]
+pub struct Launch {
+    /// Centre height, m.
+    pub z_m: f64,
+    /// Velocity, m/s.
+    pub velocity_m_s: [f64; 3],
+    /// Angular velocity, rad/s.
+    pub spin_rad_s: [f64; 3],
+}
+
+/// A pod sphere over a steel floor (z = 0), effects from `p`: normal terms only when
+/// `friction` is `None`, else with Mindlin's tangential spring and damping and the Coulomb
+/// limit at that static friction coefficient (no CDT rolling friction either way).
+pub fn floor_world_with<'a>(
+    a: &'a mut OwnedStorage<Fx>,
+    p: &ModelParams,
+    restitution: f64,
+    friction: Option<f64>,
+    launch: Launch,
+) -> Result<World<'a, Fx>, RigError> {
     let mut w = World::new(a.storage()).map_err(core_err)?;
     let pod_id = w.add_material(pod(p)).map_err(core_err)?;
     let steel = w.add_material(STEEL).map_err(core_err)?;
+    let tangential = friction.is_some();
     let spec = PairSpec {
         restitution,
-        friction: 0.0,
+        friction: friction.unwrap_or(0.0),
         rolling_friction: 0.0,
         conventions: arachis_core::contact::Conventions::EDEM,
         terms: TermSwitches {
-            mindlin_tangential: false,
-            tangential_damping: false,
-            coulomb_limit: false,
+            mindlin_tangential: tangential,
+            tangential_damping: tangential,
+            coulomb_limit: tangential,
             rolling_cdt: false,
             ..TermSwitches::ALL
         },
@@ -293,6 +353,8 @@ pub fn floor_world<'a>(
             viscoelastic_time_s: p.viscoelastic_time_s,
             cohesion_energy_density_j_m3: p.cohesion_j_m3,
             plastic_fraction: p.plastic_fraction,
+            // LIGGGHTS' `epsd2` has no dashpot; Ai et al.'s η_r is left at 0 to match it.
+            epsd_rolling_friction: p.epsd_rolling_friction,
             ..EffectSpec::default()
         },
     )
@@ -307,10 +369,24 @@ pub fn floor_world<'a>(
         steel,
     ))
     .map_err(core_err)?;
-    let mut s = SphereSpec::at_rest(pod_id, SPHERE_RADIUS_M, [0.0, 0.0, z_m]);
-    s.velocity_m_s = [0.0, 0.0, vz_m_s];
+    let mut s = SphereSpec::at_rest(pod_id, SPHERE_RADIUS_M, [0.0, 0.0, launch.z_m]);
+    s.velocity_m_s = launch.velocity_m_s;
+    s.angular_velocity_rad_s = launch.spin_rad_s;
     w.add_sphere(s).map_err(core_err)?;
     Ok(w)
+}
+
+/// The Hertz overlap of the pod sphere on the floor under `load_n` (N), m:
+/// α = (3F/(4E*√R))^{2/3} (Johnson 1985, §4.2).
+pub fn hertz_overlap_m(p: &ModelParams, load_n: f64) -> f64 {
+    (3.0 * load_n / (4.0 * e_star_pa(p) * SPHERE_RADIUS_M.sqrt())).powf(2.0 / 3.0)
+}
+
+/// The period of small normal oscillations of the pod sphere resting on the floor at overlap
+/// `alpha_m` (m), s: 2π√(m/k) with the tangent stiffness k = 2E*a, a = √(Rα).
+pub fn resting_period_s(p: &ModelParams, alpha_m: f64) -> f64 {
+    let k = 2.0 * e_star_pa(p) * (SPHERE_RADIUS_M * alpha_m).sqrt();
+    2.0 * std::f64::consts::PI * (mass_kg() / k).sqrt()
 }
 
 /// Hertz contact duration, s: t_c = 2.868·(m²/(R·E*²·v))^{1/5} (Johnson 1985, §11.1).
@@ -331,6 +407,9 @@ pub struct SingleSphereTest {
     pub quantity: Quantity,
     /// The condition it is measured at (one number).
     pub condition: ConditionKey,
+    /// The parameters that can act in it ([`PARAMETERS`] or
+    /// [`PARAMETERS_WITHOUT_ROLLING`]); it reads all of [`ModelParams`].
+    pub parameters: &'static [RigParameter],
     /// Simulates the quantity at a condition.
     pub simulate: fn(f64, &ModelParams) -> Result<f64, RigError>,
 }
@@ -346,7 +425,7 @@ impl SingleSphereTest {
             random: false,
             quantities: std::slice::from_ref(&self.quantity),
             conditions: std::slice::from_ref(&self.condition),
-            parameters: &PARAMETERS,
+            parameters: self.parameters,
             build,
         }
     }
@@ -432,6 +511,7 @@ mod tests {
             cohesion_j_m3: 0.0,
             drag_coefficient: 0.0,
             plastic_fraction: 0.0,
+            epsd_rolling_friction: 0.0,
         }
     }
 
@@ -479,6 +559,13 @@ mod tests {
                 "λ {lambda}: {alpha} vs {theory} um"
             );
         }
+    }
+
+    #[test]
+    fn only_the_rolling_effects_are_left_out_of_the_non_rolling_rigs() {
+        let left_out = &PARAMETERS[PARAMETERS_WITHOUT_ROLLING.len()..];
+        let names: Vec<&str> = left_out.iter().map(|p| p.name).collect();
+        assert_eq!(names, ["epsd_rolling"]);
     }
 
     #[test]

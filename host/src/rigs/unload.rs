@@ -27,6 +27,7 @@ pub const TEST: SingleSphereTest = SingleSphereTest {
     },
     condition: ConditionKey::new("peak_load_n", "peak load, N", Limits::Positive)
         .within((5.0e-4, 0.5), (1.0e-3, 0.2)),
+    parameters: PARAMETERS_WITHOUT_ROLLING,
     simulate,
 };
 

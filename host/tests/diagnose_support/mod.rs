@@ -39,9 +39,9 @@ pub fn study_of(section: &DiagnosisSection) -> Study {
     Study::from_toml(&section.to_toml().unwrap(), Path::new("test-study.toml")).unwrap()
 }
 
-/// The effect named `name` of the single-sphere rigs.
+/// The effect named `name` of the single-sphere rigs (the roll rig declares them all).
 pub fn effect(name: &str) -> &'static arachis::diagnose::params::ParamInfo {
-    Catalogue::of_rigs(["rebound"]).effect(name).unwrap()
+    Catalogue::of_rigs(["roll"]).effect(name).unwrap()
 }
 
 /// One hidden-effect case, simulated once.
