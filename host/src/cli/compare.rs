@@ -29,15 +29,20 @@ pub struct Args {
     /// Where the simulations run, and the run cache that keeps them.
     #[command(flatten)]
     pub runs: super::runs_args::RunsArgs,
+    /// Simulated replicates per prediction of a random rig.
+    #[command(flatten)]
+    pub prediction: super::runs_args::PredictionArgs,
 }
 
 /// Runs `arachis compare`.
 pub fn run(args: Args) -> Result<()> {
     let study = Study::load(&args.study)?;
     let data = Dataset::new(&study)?;
-    let model = args
-        .runs
-        .attach(Model::new(&study, &data.experiments)?, &study)?;
+    let model = args.runs.attach(
+        args.prediction
+            .apply(Model::new(&study, &data.experiments)?),
+        &study,
+    )?;
     let pred = predict(&data, &model, &study.current_values())?;
     print!("{}", report(&data, &pred)?);
     if let Some(dir) = &args.plots {

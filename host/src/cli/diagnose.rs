@@ -36,6 +36,9 @@ pub struct Args {
     /// Where the simulations run, and the run cache that keeps them.
     #[command(flatten)]
     pub runs: super::runs_args::RunsArgs,
+    /// Simulated replicates per prediction of a random rig.
+    #[command(flatten)]
+    pub prediction: super::runs_args::PredictionArgs,
 }
 
 /// Runs `arachis diagnose`.
@@ -43,9 +46,11 @@ pub fn run(args: Args) -> Result<()> {
     use std::fmt::Write;
     let study = Study::load(&args.study)?;
     let data = Dataset::new(&study)?;
-    let model = args
-        .runs
-        .attach(Model::new(&study, &data.experiments)?, &study)?;
+    let model = args.runs.attach(
+        args.prediction
+            .apply(Model::new(&study, &data.experiments)?),
+        &study,
+    )?;
     let current = study.current_values();
     let lin = Linearisation::new(&data, &model, &current)?;
     let lof = lack_of_fit(&data, &lin.predictions)?;

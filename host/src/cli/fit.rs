@@ -48,6 +48,9 @@ pub struct Args {
     /// Where the simulations run, and the run cache that keeps them.
     #[command(flatten)]
     pub runs: super::runs_args::RunsArgs,
+    /// Simulated replicates per prediction of a random rig.
+    #[command(flatten)]
+    pub prediction: super::runs_args::PredictionArgs,
 }
 
 /// Runs `arachis fit`.
@@ -63,9 +66,11 @@ pub fn run(args: Args) -> Result<()> {
         );
     }
     let study = Study::load(&args.study)?;
-    let model = args
-        .runs
-        .attach(Model::new(&study, &experiments(&study))?, &study)?;
+    let model = args.runs.attach(
+        args.prediction
+            .apply(Model::new(&study, &experiments(&study))?),
+        &study,
+    )?;
     let eff = model.catalogue.effect(&args.with)?;
     let data = Dataset::new(&study)?;
     let current = study.current_values();

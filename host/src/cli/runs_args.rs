@@ -1,7 +1,8 @@
 //! The flags `compare`, `diagnose`, `fit` and `harvest` share for where their simulations
 //! run: a run cache to store and replay them (`--runs DIR`), and the cluster settings
 //! ([`ClusterArgs`]). Without either, simulations run on this machine's threads and nothing
-//! is stored, as before.
+//! is stored, as before. [`PredictionArgs`]: how many placements the diagnosis commands
+//! average for a rig with a random placement.
 
 use std::path::PathBuf;
 
@@ -9,7 +10,7 @@ use anyhow::Context;
 
 use crate::calibration::{Executor, Progress};
 use crate::cluster::{on_cluster_if_chosen, ClusterArgs, ExecutorKind, RigRecipe, Simulator};
-use crate::diagnose::model::Model;
+use crate::diagnose::model::{Model, DEFAULT_RANDOM_REPLICATES};
 use crate::study::Study;
 
 /// The shared flags (module docs).
@@ -61,5 +62,27 @@ impl RunsArgs {
             Some(executor) => model.with_executor(executor),
             None => model,
         })
+    }
+}
+
+/// Most simulated replicates per prediction `--replicates` accepts: a typo cannot ask for a
+/// million piles.
+pub const MAX_PREDICTION_REPLICATES: u32 = 1000;
+
+/// `compare`, `diagnose` and `fit`: simulated replicates per prediction of a random rig.
+#[derive(Debug, Clone, clap::Args)]
+pub struct PredictionArgs {
+    /// Simulated replicates per prediction of a rig with a random placement (a pod pile):
+    /// every parameter set is simulated at the same placements, so differences between
+    /// them are paired (common random numbers). Deterministic rigs run once.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_RANDOM_REPLICATES,
+          value_parser = clap::value_parser!(u32).range(1..=MAX_PREDICTION_REPLICATES as i64))]
+    pub replicates: u32,
+}
+
+impl PredictionArgs {
+    /// `model` with these replicates.
+    pub fn apply<'a>(&self, model: Model<'a>) -> Model<'a> {
+        model.with_replicates(self.replicates)
     }
 }

@@ -5,6 +5,13 @@
 //! ([`Model::with_executor`]), through it: stored in its run cache and replayed from it, or
 //! run on a Slurm cluster. Either way a simulation is a pure function of its request, so
 //! the numbers are the same.
+//!
+//! A rig with a random placement (a pod pile: `RigKind::random`) scatters from one
+//! placement to the next. Its prediction is the mean of [`Model::with_replicates`]
+//! simulations (replicates 0…n−1 of the run request, [`DEFAULT_RANDOM_REPLICATES`] unless
+//! set), and every parameter set is simulated at the same placements: common random
+//! numbers, so a finite difference compares like with like and the placement's share of
+//! the scatter cancels as far as the runs stay correlated. A deterministic rig runs once.
 
 use anyhow::{Context, Result};
 
@@ -17,6 +24,10 @@ use crate::calibration::{BatchRun, Condition, Executor, ParameterValues, Rig, Ru
 use crate::rigs::kind::RigOptions;
 use crate::study::Study;
 
+/// Simulated replicates per prediction of a rig with a random placement, unless set
+/// ([`Model::with_replicates`]).
+pub const DEFAULT_RANDOM_REPLICATES: u32 = 4;
+
 /// The rigs of a study's experiments and their parameters.
 pub struct Model<'a> {
     /// One rig per experiment, in the data's order.
@@ -25,6 +36,10 @@ pub struct Model<'a> {
     names: Vec<String>,
     /// The quantity each experiment reads.
     quantities: Vec<String>,
+    /// Whether each experiment's rig places its particles at random (module docs).
+    random: Vec<bool>,
+    /// Simulated replicates per prediction of a random rig.
+    replicates: u32,
     /// Where simulations run when not on this machine's threads alone.
     executor: Option<Executor>,
     /// Every parameter the rigs declare.
@@ -45,6 +60,11 @@ impl<'a> Model<'a> {
         Ok(Self {
             rigs,
             names: experiments.iter().map(|e| e.rig.clone()).collect(),
+            random: experiments
+                .iter()
+                .map(|e| crate::rigs::catalogue::find(&e.rig).is_some_and(|k| k.random))
+                .collect(),
+            replicates: DEFAULT_RANDOM_REPLICATES,
             executor: None,
             quantities: experiments.iter().map(|e| e.quantity.clone()).collect(),
             catalogue: Catalogue::of_rigs(experiments.iter().map(|e| e.rig.as_str())),
@@ -55,6 +75,21 @@ impl<'a> Model<'a> {
     pub fn with_executor(mut self, executor: Executor) -> Self {
         self.executor = Some(executor);
         self
+    }
+
+    /// This model with `n` ≥ 1 simulated replicates per prediction of a random rig.
+    pub fn with_replicates(mut self, n: u32) -> Self {
+        self.replicates = n.max(1);
+        self
+    }
+
+    /// Simulated replicates per prediction of experiment `experiment`.
+    pub fn replicates_of(&self, experiment: usize) -> u32 {
+        if self.random[experiment] {
+            self.replicates
+        } else {
+            1
+        }
     }
 
     /// The simulated quantity of experiment `experiment` at `condition` with parameters `p`.
@@ -68,43 +103,64 @@ impl<'a> Model<'a> {
     }
 
     /// The simulated quantity of each (experiment, condition, parameters), in order, run in
-    /// parallel or through the attached executor.
+    /// parallel or through the attached executor: the mean over the experiment's replicates
+    /// ([`Model::replicates_of`]; the same placements for every run).
     pub fn simulate_all(&self, runs: &[(usize, &Condition, ParameterValues)]) -> Result<Vec<f64>> {
-        let Some(executor) = &self.executor else {
-            return runs
-                .par_iter()
-                .map(|(e, c, p)| self.simulate_here(*e, c, p))
-                .collect();
-        };
-        let batch: Vec<BatchRun<'_>> = runs
+        // Every simulation of every run, replicates of one run adjacent.
+        let each: Vec<(usize, u32)> = runs
             .iter()
-            .map(|(e, c, p)| BatchRun {
-                rig: self.rigs[*e].as_ref(),
-                experiment: &self.names[*e],
-                quantity: &self.quantities[*e],
-                values: p.clone(),
-                condition: c,
-                replicate: 0,
-            })
+            .enumerate()
+            .flat_map(|(k, (e, _, _))| (0..self.replicates_of(*e)).map(move |rep| (k, rep)))
             .collect();
-        Ok(executor
-            .run_requests("diagnosis", &batch)?
-            .into_iter()
-            .map(|d| d.response)
-            .collect())
+        let values: Vec<f64> = match &self.executor {
+            None => each
+                .par_iter()
+                .map(|&(k, rep)| {
+                    let (e, c, p) = &runs[k];
+                    self.simulate_here(*e, c, p, rep)
+                })
+                .collect::<Result<_>>()?,
+            Some(executor) => {
+                let batch: Vec<BatchRun<'_>> = each
+                    .iter()
+                    .map(|&(k, rep)| {
+                        let (e, c, p) = &runs[k];
+                        BatchRun {
+                            rig: self.rigs[*e].as_ref(),
+                            experiment: &self.names[*e],
+                            quantity: &self.quantities[*e],
+                            values: p.clone(),
+                            condition: c,
+                            replicate: rep,
+                        }
+                    })
+                    .collect();
+                executor
+                    .run_requests("diagnosis", &batch)?
+                    .into_iter()
+                    .map(|d| d.response)
+                    .collect()
+            }
+        };
+        let mut means = vec![0.0; runs.len()];
+        for (&(k, _), v) in each.iter().zip(&values) {
+            means[k] += v / self.replicates_of(runs[k].0) as f64;
+        }
+        Ok(means)
     }
 
-    /// One simulation on this thread.
+    /// One simulation (replicate `replicate`) on this thread.
     fn simulate_here(
         &self,
         experiment: usize,
         condition: &Condition,
         p: &ParameterValues,
+        replicate: u32,
     ) -> Result<f64> {
         let request = RunRequest {
             values: p,
             condition,
-            replicate: 0,
+            replicate,
         };
         let quantity = &self.quantities[experiment];
         let responses = self.rigs[experiment].run(&request)?;
