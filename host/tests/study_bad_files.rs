@@ -112,6 +112,16 @@ fn ranges_outside_physical_limits_are_rejected() {
         "friction coefficient must be ≥ 0",
     );
 
+    let name = "effect_negative.toml";
+    let e = rejected(name);
+    let e = at(&e, r#"pairs."pod-pod".cohesion_j_m3"#);
+    check(
+        e,
+        name,
+        line_of(name, "cohesion_j_m3 = -500.0", 1),
+        "must be ≥ 0",
+    );
+
     let name = "restitution_above_one.toml";
     let e = rejected(name);
     let e = at(&e, r#"parameters."pod-pod.restitution".high"#);

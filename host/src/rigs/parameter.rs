@@ -96,6 +96,39 @@ impl<S> Parameter<S> {
             self.scale,
         )
     }
+
+    /// This parameter as a candidate effect of a diagnosis (off at 0).
+    pub const fn for_diagnosis_as_effect(&self) -> RigParameter {
+        RigParameter {
+            role: Role::Effect,
+            ..self.for_diagnosis()
+        }
+    }
+}
+
+/// The parameters of a diagnosis: every parameter of `registry` as a base parameter, then
+/// every one of `effects` as a candidate effect, in their order (`T` = N + M).
+pub const fn diagnosis_parameters_with_effects<
+    S,
+    const N: usize,
+    const M: usize,
+    const T: usize,
+>(
+    registry: &[Parameter<S>; N],
+    effects: &[Parameter<S>; M],
+) -> [RigParameter; T] {
+    assert!(T == N + M, "T must be N + M");
+    let mut out = [RigParameter::base("", "", Limits::Positive, "", 0.0, 0.0); T];
+    let mut i = 0;
+    while i < N {
+        out[i] = registry[i].for_diagnosis();
+        i += 1;
+    }
+    while i < T {
+        out[i] = effects[i - N].for_diagnosis_as_effect();
+        i += 1;
+    }
+    out
 }
 
 /// The base parameters of a diagnosis of every parameter of `registry`, in its order.

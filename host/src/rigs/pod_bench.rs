@@ -15,9 +15,9 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
 use super::kind::{ConditionKey, Quantity, RigKind, RigOptions, WorldKind, Worlds};
-use super::parameter::{diagnosis_parameters, RigParameter};
+use super::parameter::{diagnosis_parameters_with_effects, RigParameter};
 use super::pod_world::observation::ReposeDetails;
-use super::pod_world::parameters::Owner;
+use super::pod_world::parameters::{Owner, EFFECTS};
 use super::pod_world::setup::RunInputs;
 use super::pod_world::{
     check_values, Experiment, ExperimentError, ModeName, Observation, ObservationDetails,
@@ -95,9 +95,10 @@ pub const MOISTURE: ConditionKey = ConditionKey::new(
     Limits::NonNegative,
 );
 
-/// The pod rigs' parameters for a diagnosis: the registry's (seed 000 Table 3's x1…x8);
-/// no optional effects yet.
-pub const PARAMETERS: [RigParameter; 8] = diagnosis_parameters(&REGISTRY);
+/// The pod rigs' parameters for a diagnosis: the registry's (seed 000 Table 3's x1…x8) as
+/// base parameters, then the pod world's optional effects ([`EFFECTS`]) as candidates.
+pub const PARAMETERS: [RigParameter; REGISTRY.len() + EFFECTS.len()] =
+    diagnosis_parameters_with_effects(&REGISTRY, &EFFECTS);
 
 /// Builds the pod bench rig of `test` over a study's pod world.
 pub fn build<'a>(

@@ -29,7 +29,7 @@ use super::plan::Plan;
 use super::pull_off::{FactorLevels, MeasuredForce, PullOffRigSection};
 pub use crate::rigs::pod_world::parameters::ParameterRange;
 pub use crate::rigs::pod_world::sections::{
-    Material, Pair, Pods, ShapeMix, SizeClass, Spheres, StlPaths, PAIR_PROPERTIES,
+    Material, Pair, Pods, ShapeMix, SizeClass, Spheres, StlPaths, PAIR_EFFECTS, PAIR_PROPERTIES,
 };
 
 /// The whole file. Absent sections are left out when it is written back.

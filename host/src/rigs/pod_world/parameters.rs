@@ -154,9 +154,70 @@ pub const REGISTRY: [ParameterSpec; 8] = [
     },
 ];
 
-/// The registry entry named `name`.
+/// The optional physical effects of the pod world (issue 22), each a key of a pair's table,
+/// off at 0: never a factor of a calibration plan, offered by a diagnosis as candidates for
+/// what the model lacks. Their finite-difference steps are large enough to move a quick
+/// pile by more than its fixed-point noise; common random numbers take care of the
+/// placement scatter (`diagnose::model`).
+pub const EFFECTS: [ParameterSpec; 3] = [
+    ParameterSpec {
+        name: "pod-pod.cohesion_j_m3",
+        label: "cohesion",
+        description: "pod–pod SJKR cohesion, attraction k × contact area (LIGGGHTS sjkr)",
+        unit: "J/m^3",
+        sets: Property {
+            owner: Owner::Pair("pod-pod"),
+            property: "cohesion_j_m3",
+        },
+        limits: Limits::NonNegative,
+        fd_step: 2.0e3,
+        scale: 1.0e4,
+    },
+    ParameterSpec {
+        name: "pod-pod.epsd_rolling_friction",
+        label: "epsd_rolling",
+        description: "pod–pod EPSD rolling resistance on top of the rolling friction, torque \
+                      limit μr·R*·Fn (Ai et al. 2011 type C)",
+        unit: "-",
+        sets: Property {
+            owner: Owner::Pair("pod-pod"),
+            property: "epsd_rolling_friction",
+        },
+        limits: Limits::NonNegative,
+        fd_step: 0.02,
+        scale: 0.1,
+    },
+    ParameterSpec {
+        name: "pod-pod.viscoelastic_time_s",
+        label: "viscoelastic",
+        description: "pod–pod viscoelastic damping, restitution falling with impact speed \
+                      (Brilliantov et al. 1996)",
+        unit: "s",
+        sets: Property {
+            owner: Owner::Pair("pod-pod"),
+            property: "viscoelastic_time_s",
+        },
+        limits: Limits::NonNegative,
+        fd_step: 2.0e-6,
+        scale: 1.0e-5,
+    },
+];
+
+/// The registry entry named `name` (a calibratable parameter, seed 000 Table 3).
 pub fn lookup(name: &str) -> Option<&'static ParameterSpec> {
     REGISTRY.iter().find(|p| p.name == name)
+}
+
+/// The registry entry or optional effect named `name`: anything a run's values may set.
+pub fn lookup_any(name: &str) -> Option<&'static ParameterSpec> {
+    lookup(name).or_else(|| EFFECTS.iter().find(|p| p.name == name))
+}
+
+/// The optional effect setting `property` of pair `pair`, if one is registered.
+pub fn effect_for(pair: &str, property: &str) -> Option<&'static ParameterSpec> {
+    EFFECTS.iter().find(|p| {
+        p.sets.property == property && matches!(p.sets.owner, Owner::Pair(o) if o == pair)
+    })
 }
 
 /// The registry entry setting `property` of `owner` (a material or pair name).

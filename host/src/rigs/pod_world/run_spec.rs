@@ -12,7 +12,7 @@ use arachis_core::contact::{Conventions, FrictionConvention, RollingConvention};
 use serde::Serialize;
 
 use super::experiment::Experiment;
-use super::parameters::{for_property, lookup, Owner};
+use super::parameters::{effect_for, for_property, lookup_any, Owner};
 use super::sections::{Particles, ShapeMix, SizeClass};
 use super::settings::{Mode, Simulation};
 use super::PodWorld;
@@ -46,6 +46,22 @@ pub struct RunPair {
     /// existed.
     #[serde(flatten, serialize_with = "conventions_if_not_edem")]
     pub conventions: Conventions,
+    /// Optional effects (`sections::PAIR_EFFECTS`), each written only when on, so the spec
+    /// of a run without them, and so its hash and cache entry, is the same as before they
+    /// existed: SJKR cohesion energy density, J/m³, …
+    #[serde(skip_serializing_if = "is_off")]
+    pub cohesion_j_m3: f64,
+    /// … EPSD rolling resistance μr, …
+    #[serde(skip_serializing_if = "is_off")]
+    pub epsd_rolling_friction: f64,
+    /// … viscoelastic relaxation time, s.
+    #[serde(skip_serializing_if = "is_off")]
+    pub viscoelastic_time_s: f64,
+}
+
+/// serde helper: an effect at 0 is off and not written.
+fn is_off(x: &f64) -> bool {
+    *x == 0.0
 }
 
 /// `rolling_convention` and `friction_convention` by name, each only when not EDEM's.
@@ -162,7 +178,7 @@ impl PodWorld<'_> {
             .ok_or_else(|| format!("no mode '{mode}' in the study"))?
             .clone();
         for name in values.keys() {
-            if lookup(name).is_none() {
+            if lookup_any(name).is_none() {
                 return Err(format!("unknown parameter '{name}'"));
             }
         }
@@ -194,6 +210,13 @@ impl PodWorld<'_> {
                         .ok_or_else(|| format!("pair {name}: no {property}")),
                 }
             };
+            // An effect: the run's value, else the pair's, else off.
+            let effect = |property: &str| -> f64 {
+                effect_for(name, property)
+                    .and_then(|s| values.get(s.name).copied())
+                    .or_else(|| self.pairs[name].property(property))
+                    .unwrap_or(0.0)
+            };
             pairs.insert(
                 name.clone(),
                 RunPair {
@@ -201,11 +224,14 @@ impl PodWorld<'_> {
                     static_friction: get("static_friction")?,
                     rolling_friction: get("rolling_friction")?,
                     conventions: self.pairs[name].conventions(),
+                    cohesion_j_m3: effect("cohesion_j_m3"),
+                    epsd_rolling_friction: effect("epsd_rolling_friction"),
+                    viscoelastic_time_s: effect("viscoelastic_time_s"),
                 },
             );
         }
         for (name, value) in values {
-            let spec = lookup(name).expect("checked above");
+            let spec = lookup_any(name).expect("checked above");
             if let Owner::Material(m) = spec.sets.owner {
                 let mat = materials
                     .get_mut(m)

@@ -69,6 +69,16 @@ pub struct Pair {
         serialize_with = "name_of"
     )]
     pub friction_convention: Option<FrictionConvention>,
+    /// Optional effect: SJKR cohesion energy density k, J/m³ (0 or absent: off).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cohesion_j_m3: Option<f64>,
+    /// Optional effect: EPSD rolling resistance μr on top of `rolling_friction` (Ai et al.
+    /// 2011 type C, no dashpot; 0 or absent: off).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub epsd_rolling_friction: Option<f64>,
+    /// Optional effect: viscoelastic relaxation time A, s (0 or absent: off).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub viscoelastic_time_s: Option<f64>,
     /// Where the numbers are printed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub source: Option<String>,
@@ -98,6 +108,13 @@ fn name_of<S: Serializer, T: Display>(value: &Option<T>, s: S) -> Result<S::Ok, 
 /// The contact properties of a pair, in file order.
 pub const PAIR_PROPERTIES: [&str; 3] = ["restitution", "static_friction", "rolling_friction"];
 
+/// The optional effects of a pair (off when absent), in file order.
+pub const PAIR_EFFECTS: [&str; 3] = [
+    "cohesion_j_m3",
+    "epsd_rolling_friction",
+    "viscoelastic_time_s",
+];
+
 impl Pair {
     /// The pair's conventions (EDEM's where the study names none).
     pub fn conventions(&self) -> Conventions {
@@ -107,12 +124,15 @@ impl Pair {
         }
     }
 
-    /// The value of property `name` (one of [`PAIR_PROPERTIES`]).
+    /// The value of property `name` (one of [`PAIR_PROPERTIES`] or [`PAIR_EFFECTS`]).
     pub fn property(&self, name: &str) -> Option<f64> {
         match name {
             "restitution" => self.restitution,
             "static_friction" => self.static_friction,
             "rolling_friction" => self.rolling_friction,
+            "cohesion_j_m3" => self.cohesion_j_m3,
+            "epsd_rolling_friction" => self.epsd_rolling_friction,
+            "viscoelastic_time_s" => self.viscoelastic_time_s,
             _ => None,
         }
     }

@@ -10,6 +10,7 @@
 use std::collections::BTreeMap;
 
 use arachis_core::body::MassProperties as CoreMass;
+use arachis_core::effects::EffectSpec;
 use arachis_core::prelude::*;
 use arachis_core::scenario::SplitMix64;
 
@@ -42,6 +43,11 @@ pub struct RunInputs {
     pub pod_pod: PairSpec,
     /// Pod–wall contact (seed 000 x6–x8).
     pub pod_wall: PairSpec,
+    /// Optional effects of the pod–pod contact (all off unless the study or the run's
+    /// values switch one on).
+    pub pod_pod_effects: EffectSpec,
+    /// Optional effects of the pod–wall contact.
+    pub pod_wall_effects: EffectSpec,
     /// The mode's pods and spheres per pod.
     pub mode: Mode,
     /// The mode's name.
@@ -80,21 +86,29 @@ fn material(
     })
 }
 
+/// The pair `a`-`b` of `spec`: its contact law and its optional effects.
 fn pair(
     spec: &RunSpec,
     a: &str,
     b: &str,
     experiment: Experiment,
-) -> Result<PairSpec, ExperimentError> {
+) -> Result<(PairSpec, EffectSpec), ExperimentError> {
     let p = spec
         .pairs
         .get(&format!("{a}-{b}"))
         .or_else(|| spec.pairs.get(&format!("{b}-{a}")))
         .ok_or_else(|| study_error(experiment, format!("no pair '{a}-{b}'")))?;
-    Ok(
+    let effects = EffectSpec {
+        cohesion_energy_density_j_m3: p.cohesion_j_m3,
+        epsd_rolling_friction: p.epsd_rolling_friction,
+        viscoelastic_time_s: p.viscoelastic_time_s,
+        ..EffectSpec::default()
+    };
+    Ok((
         PairSpec::hertz_mindlin(p.restitution, p.static_friction, p.rolling_friction)
             .with_conventions(p.conventions),
-    )
+        effects,
+    ))
 }
 
 impl RunInputs {
@@ -130,8 +144,8 @@ impl RunInputs {
             PoissonRange::Isotropic
         };
         let wall = material(&spec, &wall_name, experiment)?;
-        let pod_pod = pair(&spec, &pod_name, &pod_name, experiment)?;
-        let pod_wall = pair(&spec, &pod_name, &wall_name, experiment)?;
+        let (pod_pod, pod_pod_effects) = pair(&spec, &pod_name, &pod_name, experiment)?;
+        let (pod_wall, pod_wall_effects) = pair(&spec, &pod_name, &wall_name, experiment)?;
         let (key, fractions) = match (&spec.pods, &spec.spheres) {
             (Some(pods), _) => {
                 let m = &pods.shape_mix;
@@ -178,6 +192,8 @@ impl RunInputs {
             wall,
             pod_pod,
             pod_wall,
+            pod_pod_effects,
+            pod_wall_effects,
             fractions,
             templates,
         })
@@ -232,10 +248,17 @@ pub struct Arena(OwnedStorage<Fx>);
 impl Arena {
     /// Room for `bodies` bodies made of `spheres` spheres in all, and for the contact state of
     /// `inputs`' pairs (an effect-history arena when a pair keeps one, as LIGGGHTS' `epsd2`
-    /// rolling convention does).
+    /// rolling convention and the EPSD effect do).
     pub fn new(inputs: &RunInputs, bodies: usize, spheres: usize) -> Self {
         let lengths = StorageLengths::for_spheres(bodies.max(1), spheres.max(1))
             .with_effects_for(&[inputs.pod_pod, inputs.pod_wall]);
+        let effects_kept =
+            inputs.pod_pod_effects.needs_history() || inputs.pod_wall_effects.needs_history();
+        let lengths = if effects_kept {
+            lengths.with_effects()
+        } else {
+            lengths
+        };
         Arena(OwnedStorage::new(lengths))
     }
 
@@ -288,6 +311,26 @@ pub fn add_materials(
         .map_err(at(format!("pairs.\"{pod_name}-{pod_name}\"")))?;
     w.set_pair(pod, wall, inputs.pod_wall)
         .map_err(at(format!("pairs.\"{pod_name}-{wall_name}\"")))?;
+    // Effects only where one is on, so a run without them sets up the world as before.
+    for (a, b, effects, name) in [
+        (
+            pod,
+            pod,
+            inputs.pod_pod_effects,
+            format!("{pod_name}-{pod_name}"),
+        ),
+        (
+            pod,
+            wall,
+            inputs.pod_wall_effects,
+            format!("{pod_name}-{wall_name}"),
+        ),
+    ] {
+        if effects != EffectSpec::default() {
+            w.set_pair_effects(a, b, effects)
+                .map_err(at(format!("pairs.\"{name}\"")))?;
+        }
+    }
     w.set_gravity_m_s2([0.0, 0.0, -inputs.simulation.gravity_m_s2])
         .map_err(at("plan.simulation.gravity_m_s2".into()))?;
     Ok(RigMaterials { pod, wall })

@@ -7,7 +7,7 @@ use std::fmt;
 use std::str::FromStr;
 
 use super::error::ExperimentError;
-use super::parameters::{lookup, REGISTRY};
+use super::parameters::{lookup_any, EFFECTS, REGISTRY};
 use super::PodWorld;
 use crate::nearest_name::nearest_name;
 
@@ -79,10 +79,10 @@ pub fn parse_assignment(text: &str) -> Result<(String, f64), ExperimentError> {
 }
 
 fn check_key(key: &str) -> Result<(), ExperimentError> {
-    if lookup(key).is_some() {
+    if lookup_any(key).is_some() {
         return Ok(());
     }
-    let names: Vec<&str> = REGISTRY.iter().map(|p| p.name).collect();
+    let names: Vec<&str> = REGISTRY.iter().chain(&EFFECTS).map(|p| p.name).collect();
     let hint = nearest_name(key, &names)
         .map(|n| format!(", did you mean '{n}'?"))
         .unwrap_or_else(|| format!("; known parameters: {}", names.join(", ")));
@@ -98,7 +98,7 @@ fn check_key(key: &str) -> Result<(), ExperimentError> {
 pub fn check_values(world: &PodWorld<'_>, values: &ParameterValues) -> Result<(), ExperimentError> {
     for (key, &value) in values {
         check_key(key)?;
-        let spec = lookup(key).expect("checked");
+        let spec = lookup_any(key).expect("checked");
         let limits = world
             .parameters
             .get(key)

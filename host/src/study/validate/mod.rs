@@ -35,7 +35,7 @@ use crate::rigs::pod_world::sections::{Particles, Spheres};
 use crate::rigs::pod_world::Pods;
 use crate::shapes::stl::read_stl;
 use crate::study::error::StudyError;
-use crate::study::file_format::{StudyFile, PAIR_PROPERTIES};
+use crate::study::file_format::{StudyFile, PAIR_EFFECTS, PAIR_PROPERTIES};
 use crate::study::key_path::KeyPath;
 use crate::study::pull_off::{ReadFile, KIND_PULL_OFF};
 use crate::study::source::Source;
@@ -325,6 +325,12 @@ impl Validator<'_, '_> {
                         ),
                     ),
                     (None, None) => self.fail(&k, format!("no {property}: give a value")),
+                }
+            }
+            // An optional effect is off when absent; when given, it is ≥ 0 and finite.
+            for property in PAIR_EFFECTS {
+                if let Some(value) = pair.property(property) {
+                    self.limit(&k.key(property), value, Limits::NonNegative);
                 }
             }
         }
