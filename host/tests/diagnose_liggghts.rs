@@ -134,55 +134,68 @@ fn rebound_and_press(file: &str) -> Case {
 /// The SJKR cohesion LIGGGHTS hid in cohesion-5e3.csv, J/m³.
 const HIDDEN_COHESION_J_M3: f64 = 5.0e3;
 
-#[test]
-fn cohesion_hidden_by_liggghts_is_found_and_fitted() {
-    // Rebound and press at six conditions each, made by LIGGGHTS with SJKR cohesion 5e3 J/m³
-    // (the press at 0.1 N moves by 0.50 µm, 10 SE of its mean); the study is calibrated at
-    // LIGGGHTS' e and E, without cohesion.
-    let c = rebound_and_press("cohesion-5e3.csv");
-    let cohesion = effect("cohesion");
+/// Over the ten noise seeds of case `c`, with `name` hidden at `hidden` by LIGGGHTS: the
+/// effect ranked first and claimed, the fit within 2 SE of `hidden`, and the replicate RMS of
+/// every experiment within [0.8, 1.3] × its pure-error SD after the fit, each in ≥ 8 of 10.
+fn found_and_fitted(c: &Case, name: &str, hidden: f64) {
+    let effect = effect(name);
     let (mut first, mut covered, mut in_band) = (0, 0, 0);
     for seed in 0..SEEDS {
         let r = c.ranking(seed);
-        if r.top().map(|t| t.effect.name) == Some("cohesion") && r.any_claimed() {
+        if r.top().map(|t| t.effect.name) == Some(name) && r.any_claimed() {
             first += 1;
         }
-        let f = c.compare(seed, cohesion, false).with;
+        let f = c.compare(seed, effect, false).with;
         // Residual RMS over the replicates against the pure-error SD, per experiment.
         let ratios: Vec<f64> = lack_of_fit(&c.data(seed), &f.predictions)
             .unwrap()
             .iter()
             .map(|l| l.rms / l.sd)
             .collect();
-        println!("seed {seed}: RMS/SD after the fit {ratios:.3?}");
         if ratios.iter().all(|r| (0.8..=1.3).contains(r)) {
             in_band += 1;
         }
-        let k = f.free.iter().position(|p| p.name == "cohesion").unwrap();
+        let k = f.free.iter().position(|p| p.name == name).unwrap();
         let (v, se) = (
-            arachis::diagnose::params::value(cohesion, &f.params),
+            arachis::diagnose::params::value(effect, &f.params),
             f.std_errors[k],
         );
-        println!("seed {seed}: cohesion {v:.4e} ± {se:.2e} J/m^3");
-        if (v - HIDDEN_COHESION_J_M3).abs() <= 2.0 * se {
+        println!("seed {seed}: {name} {v:.5e} ± {se:.2e}; RMS/SD after the fit {ratios:.3?}");
+        if (v - hidden).abs() <= 2.0 * se {
             covered += 1;
         }
     }
     println!(
-        "cohesion first and claimed {first}/{SEEDS}; within 2 SE {covered}/{SEEDS}; \
-         RMS/SD in [0.8, 1.3] for both rigs {in_band}/{SEEDS}"
+        "{name} first and claimed {first}/{SEEDS}; within 2 SE {covered}/{SEEDS}; \
+         RMS/SD in [0.8, 1.3] for every rig {in_band}/{SEEDS}"
     );
     assert!(first >= 8);
     assert!(covered >= 8);
     assert!(in_band >= 8);
 }
 
-#[test]
-fn liggghts_data_without_a_hidden_effect_rarely_claim_one() {
-    let c = rebound_and_press("null.csv");
+/// Claims over the ten noise seeds of case `c`, which hides nothing: at most 1 of 10.
+fn rarely_claimed(c: &Case) {
     let claims = (0..SEEDS).filter(|&s| c.ranking(s).any_claimed()).count();
     println!("no hidden effect: a claim in {claims}/{SEEDS}");
     assert!(claims <= 1);
+}
+
+#[test]
+fn cohesion_hidden_by_liggghts_is_found_and_fitted() {
+    // Rebound and press at six conditions each, made by LIGGGHTS with SJKR cohesion 5e3 J/m³
+    // (the press at 0.1 N moves by 0.50 µm, 10 SE of its mean); the study is calibrated at
+    // LIGGGHTS' e and E, without cohesion.
+    found_and_fitted(
+        &rebound_and_press("cohesion-5e3.csv"),
+        "cohesion",
+        HIDDEN_COHESION_J_M3,
+    );
+}
+
+#[test]
+fn liggghts_data_without_a_hidden_effect_rarely_claim_one() {
+    rarely_claimed(&rebound_and_press("null.csv"));
 }
 
 #[test]
@@ -247,50 +260,14 @@ fn the_roll_rig_agrees_with_liggghts() {
 
 #[test]
 fn rolling_resistance_hidden_by_liggghts_is_found_and_fitted() {
-    let c = roll("roll-epsd-0.01.csv");
-    let rolling = effect("epsd_rolling");
-    let (mut first, mut covered, mut in_band) = (0, 0, 0);
-    for seed in 0..SEEDS {
-        let r = c.ranking(seed);
-        if r.top().map(|t| t.effect.name) == Some("epsd_rolling") && r.any_claimed() {
-            first += 1;
-        }
-        let f = c.compare(seed, rolling, false).with;
-        let ratios: Vec<f64> = lack_of_fit(&c.data(seed), &f.predictions)
-            .unwrap()
-            .iter()
-            .map(|l| l.rms / l.sd)
-            .collect();
-        let k = f
-            .free
-            .iter()
-            .position(|p| p.name == "epsd_rolling")
-            .unwrap();
-        let (v, se) = (
-            arachis::diagnose::params::value(rolling, &f.params),
-            f.std_errors[k],
-        );
-        println!("seed {seed}: mu_r {v:.5} ± {se:.1e}; RMS/SD after the fit {ratios:.3?}");
-        if ratios.iter().all(|r| (0.8..=1.3).contains(r)) {
-            in_band += 1;
-        }
-        if (v - HIDDEN_ROLLING_FRICTION).abs() <= 2.0 * se {
-            covered += 1;
-        }
-    }
-    println!(
-        "EPSD rolling first and claimed {first}/{SEEDS}; within 2 SE {covered}/{SEEDS}; \
-         RMS/SD in [0.8, 1.3] {in_band}/{SEEDS}"
+    found_and_fitted(
+        &roll("roll-epsd-0.01.csv"),
+        "epsd_rolling",
+        HIDDEN_ROLLING_FRICTION,
     );
-    assert!(first >= 8);
-    assert!(covered >= 8);
-    assert!(in_band >= 8);
 }
 
 #[test]
 fn rolling_data_without_a_hidden_effect_rarely_claim_one() {
-    let c = roll("roll-null.csv");
-    let claims = (0..SEEDS).filter(|&s| c.ranking(s).any_claimed()).count();
-    println!("no hidden effect: a claim in {claims}/{SEEDS}");
-    assert!(claims <= 1);
+    rarely_claimed(&roll("roll-null.csv"));
 }

@@ -100,7 +100,7 @@ pub fn report(data: &Dataset, pred: &[f64]) -> Result<String> {
             writeln!(
                 s,
                 "  {at:<12} {:>3}   {:<14.6} {:<12.3e} {:<15.6} {:+8.2}{}",
-                o.values.len(),
+                o.n,
                 o.mean,
                 o.se_mean,
                 pred[i],

@@ -10,7 +10,7 @@
 use anyhow::{bail, Result};
 use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 
-use super::params::ParamInfo;
+use super::params::{Catalogue, ParamInfo};
 use crate::calibration::Condition;
 use crate::rigs::single_sphere::PARAMETERS;
 use crate::study::Study;
@@ -24,8 +24,12 @@ pub struct Obs {
     pub condition: Condition,
     /// The condition's value on the experiment's axis (its first key).
     pub x: f64,
-    /// Replicates.
+    /// Replicates (empty for a printed summary).
     pub values: Vec<f64>,
+    /// Number of replicates.
+    pub n: usize,
+    /// Σ (v − mean)² over the replicates, from a printed SD as (n − 1)·SD².
+    pub ss_within: f64,
     /// Mean of the replicates.
     pub mean: f64,
     /// Standard error of the mean, s/√n, with s the experiment's pure-error SD.
@@ -123,8 +127,9 @@ pub fn experiments(study: &Study) -> Vec<Experiment> {
 }
 
 impl Dataset {
-    /// Reduces the measurements of `study`. Every point needs replicate values, and each
-    /// experiment ≥ 1 degree of freedom of pure error (some point with ≥ 2 replicates).
+    /// Reduces the measurements of `study`. Every point needs replicate values or a printed
+    /// mean ± SD over n, and each experiment ≥ 1 degree of freedom of pure error (some point
+    /// with ≥ 2 replicates).
     pub fn new(study: &Study) -> Result<Self> {
         let experiments = experiments(study);
         let mut obs = Vec::new();
@@ -134,19 +139,35 @@ impl Dataset {
             let mut ss = 0.0;
             let mut df = 0usize;
             let mut scale = 0.0f64;
+            let mut reduced = Vec::new();
             for (pi, p) in s.points.iter().enumerate() {
-                if p.values.is_empty() {
-                    bail!(
+                let (n, m, within) = match (&p.summary, p.values.is_empty()) {
+                    (_, false) => {
+                        let n = p.values.len();
+                        let m = p.values.iter().sum::<f64>() / n as f64;
+                        (n, m, p.values.iter().map(|v| (v - m).powi(2)).sum::<f64>())
+                    }
+                    (Some(sum), true) => {
+                        let n = sum.n as usize;
+                        (n, sum.mean, sum.sd * sum.sd * n.saturating_sub(1) as f64)
+                    }
+                    (None, true) => bail!(
                         "in {}: {what} point {}: no values (the diagnosis needs the replicates \
-                         as measured)",
+                         as measured, or their mean, sd and n)",
+                        study.path().display(),
+                        pi + 1
+                    ),
+                };
+                if n == 0 {
+                    bail!(
+                        "in {}: {what} point {}: n = 0 replicates",
                         study.path().display(),
                         pi + 1
                     );
                 }
-                let n = p.values.len() as f64;
-                let m = p.values.iter().sum::<f64>() / n;
-                ss += p.values.iter().map(|v| (v - m).powi(2)).sum::<f64>();
-                df += p.values.len() - 1;
+                reduced.push((n, m, within));
+                ss += within;
+                df += n - 1;
                 scale = scale.max(m.abs());
             }
             if df == 0 {
@@ -160,27 +181,38 @@ impl Dataset {
                 .sqrt()
                 .max(MIN_RELATIVE_SD * scale.max(1.0));
             pure_error.push(PureError { sd, df });
-            for p in &s.points {
-                let n = p.values.len() as f64;
+            for (p, &(n, mean, ss_within)) in s.points.iter().zip(&reduced) {
                 obs.push(Obs {
                     experiment: ei,
                     x: p.condition.get(&e.condition.0).copied().unwrap_or(f64::NAN),
                     condition: p.condition.clone(),
                     values: p.values.clone(),
-                    mean: p.values.iter().sum::<f64>() / n,
-                    se_mean: sd / n.sqrt(),
+                    n,
+                    ss_within,
+                    mean,
+                    se_mean: sd / (n as f64).sqrt(),
                 });
             }
         }
-        let priors = study
+        // `[diagnosis.prior]` names single-sphere parameters; a calibration study's `[priors]`
+        // those of its measured rigs (both checked when the study was loaded).
+        let catalogue = Catalogue::of_rigs(experiments.iter().map(|e| e.rig.as_str()));
+        let single_sphere = study
             .file()
             .diagnosis
             .iter()
             .flat_map(|d| &d.prior)
-            .filter_map(|(name, p)| {
-                let param = PARAMETERS.iter().find(|i| i.name == name)?;
+            .map(|(name, p)| (PARAMETERS.iter().find(|i| i.name == name), p));
+        let of_rigs = study
+            .file()
+            .priors
+            .iter()
+            .map(|(name, p)| (catalogue.0.iter().copied().find(|i| i.name == name), p));
+        let priors = single_sphere
+            .chain(of_rigs)
+            .filter_map(|(param, p)| {
                 Some(BenchPrior {
-                    param,
+                    param: param?,
                     mean: p.mean,
                     sd: p.sd,
                 })
@@ -248,10 +280,16 @@ pub fn lack_of_fit(data: &Dataset, pred: &[f64]) -> Result<Vec<LackOfFit>> {
         let chi2: f64 = idx.iter().map(|&i| r[i] * r[i]).sum();
         let (mut ss, mut n) = (0.0, 0usize);
         for &i in &idx {
-            for v in &data.obs[i].values {
-                ss += (v - pred[i]).powi(2);
-                n += 1;
+            let o = &data.obs[i];
+            if o.values.is_empty() {
+                // A printed summary: Σ(v − ŷ)² = Σ(v − ȳ)² + n(ȳ − ŷ)².
+                ss += o.ss_within + o.n as f64 * (o.mean - pred[i]).powi(2);
+            } else {
+                for v in &o.values {
+                    ss += (v - pred[i]).powi(2);
+                }
             }
+            n += o.n;
         }
         let p_value = if k == 0 {
             1.0
@@ -297,5 +335,81 @@ mod tests {
         assert!((lof[0].chi2 - r[0] * r[0]).abs() < 1e-12);
         let f = FisherSnedecor::new(2.0, 3.0).unwrap();
         assert!((lof[0].p_value - (1.0 - f.cdf(r[0] * r[0] / 2.0))).abs() < 1e-12);
+    }
+
+    /// The replicates of the test above, as measured and as a paper prints them (mean ± SD
+    /// over n): the same pure error, residuals and lack of fit.
+    #[test]
+    fn printed_summaries_reduce_like_their_replicates() {
+        let study = |a: &str, b: &str| {
+            let text = format!(
+                "[study]\nname = \"t\"\ndescription = \"t\"\ncitation = \"t\"\n\
+                 [[measurements]]\nexperiment = \"fall\"\nquantity = \"fall_time\"\n\
+                 unit = \"ms\"\ncondition = {{ fall_height_m = 0.5 }}\n{a}\n\
+                 [[measurements]]\nexperiment = \"fall\"\nquantity = \"fall_time\"\n\
+                 unit = \"ms\"\ncondition = {{ fall_height_m = 1.0 }}\n{b}\n"
+            );
+            Study::from_toml(&text, std::path::Path::new("t.toml")).unwrap()
+        };
+        let values =
+            Dataset::new(&study("values = [1.0, 3.0]", "values = [2.0, 4.0, 6.0]")).unwrap();
+        let printed = Dataset::new(&study(
+            "mean = 2.0\nsd = 1.4142135623730951\nn = 2",
+            "mean = 4.0\nsd = 2.0\nn = 3",
+        ))
+        .unwrap();
+        assert!((printed.pure_error[0].sd - values.pure_error[0].sd).abs() < 1e-12);
+        assert_eq!(printed.pure_error[0].df, values.pure_error[0].df);
+        let pred = [0.5, 4.5];
+        let (a, b) = (values.standardised(&pred), printed.standardised(&pred));
+        assert!(a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-12));
+        let (a, b) = (
+            lack_of_fit(&values, &pred).unwrap(),
+            lack_of_fit(&printed, &pred).unwrap(),
+        );
+        assert!(
+            (a[0].rms - b[0].rms).abs() < 1e-12,
+            "{} vs {}",
+            a[0].rms,
+            b[0].rms
+        );
+        // A mean without its SD cannot say how much replicates scatter.
+        let err = Dataset::new(&study("mean = 2.0\nn = 2", "values = [2.0, 4.0, 6.0]"))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("no values"), "{err}");
+    }
+
+    /// A calibration study's `[priors]` name base parameters of the rigs it measures.
+    #[test]
+    fn a_calibration_study_states_bench_priors_of_its_rigs() {
+        let study = |priors: &str| {
+            let text = format!(
+                "[study]\nname = \"t\"\ndescription = \"t\"\ncitation = \"t\"\n\
+                 [[measurements]]\nexperiment = \"fall\"\nquantity = \"fall_time\"\n\
+                 unit = \"ms\"\ncondition = {{ fall_height_m = 0.5 }}\nvalues = [1.0, 3.0]\n\
+                 [priors]\n{priors}\n"
+            );
+            Study::from_toml(&text, std::path::Path::new("t.toml"))
+        };
+        let data =
+            Dataset::new(&study("restitution = { mean = 0.5, sd = 0.02 }").unwrap()).unwrap();
+        assert_eq!(data.priors.len(), 1);
+        assert_eq!(data.priors[0].param.name, "restitution");
+        assert_eq!((data.priors[0].mean, data.priors[0].sd), (0.5, 0.02));
+        for (bad, says) in [
+            ("restitution = { mean = 0.5, sd = 0.0 }", "sd = 0 must be"),
+            (
+                "cohesion = { mean = 1.0, sd = 0.1 }",
+                "unknown base parameter 'cohesion'",
+            ),
+            (
+                "\"pod-pod.rolling_friction\" = { mean = 0.3, sd = 0.01 }",
+                "unknown base parameter",
+            ),
+        ] {
+            let err = study(bad).unwrap_err().to_string();
+            assert!(err.contains("priors") && err.contains(says), "{bad}: {err}");
+        }
     }
 }

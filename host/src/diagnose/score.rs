@@ -228,6 +228,8 @@ mod tests {
                 condition: Default::default(),
                 x: 0.1 * (i + 1) as f64,
                 values: vec![m[i]],
+                n: 1,
+                ss_within: 0.0,
                 mean: m[i],
                 se_mean: 1.0,
             })

@@ -84,6 +84,7 @@ pub(crate) fn decode_file(src: &Source<'_>) -> Result<StudyFile, Vec<StudyError>
         factors: map(src, root, "factors", need("factors"), &mut errors).unwrap_or_default(),
         plan: plan(src, root, layout, &mut errors),
         diagnosis: whole(src, root, "diagnosis", false, &mut errors),
+        priors: map(src, root, "priors", false, &mut errors).unwrap_or_default(),
     };
     if errors.is_empty() {
         Ok(file)

@@ -28,7 +28,7 @@ use super::key_path::KeyPath;
 use super::source::Source;
 use crate::rigs::catalogue;
 use crate::rigs::kind::WorldKind;
-use crate::rigs::parameter::Role;
+use crate::rigs::parameter::{RigParameter, Role};
 use crate::rigs::single_sphere::{ModelParams, PARAMETERS};
 
 /// `[diagnosis]`.
@@ -118,15 +118,24 @@ fn median_magnitude<'a>(values: impl Iterator<Item = &'a f64>) -> f64 {
     m[m.len() / 2]
 }
 
-/// `Ok` when `prior` is a bench value of a base parameter named `name`: a known name, a mean
-/// inside the parameter's limits and a finite SD > 0.
+/// [`check_prior_among`] the single-sphere rigs' parameters.
 fn check_prior(name: &str, prior: &Prior) -> Result<(), String> {
-    let base: Vec<&str> = PARAMETERS
+    check_prior_among(name, prior, &PARAMETERS.iter().collect::<Vec<_>>())
+}
+
+/// `Ok` when `prior` is a bench value of a base parameter named `name` among `parameters`: a
+/// known name, a mean inside the parameter's limits and a finite SD > 0.
+pub(crate) fn check_prior_among(
+    name: &str,
+    prior: &Prior,
+    parameters: &[&RigParameter],
+) -> Result<(), String> {
+    let base: Vec<&str> = parameters
         .iter()
         .filter(|p| p.role == Role::Base)
         .map(|p| p.name)
         .collect();
-    let Some(info) = PARAMETERS
+    let Some(info) = parameters
         .iter()
         .find(|p| p.name == name && p.role == Role::Base)
     else {

@@ -72,6 +72,11 @@ pub struct StudyFile {
     /// `[diagnosis]`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub diagnosis: Option<DiagnosisSection>,
+    /// `[priors]`: base parameters of the measured rigs measured on the bench, by parameter
+    /// name (`"pod-pod.rolling_friction" = { mean = 0.335, sd = 0.012 }`), for a diagnosis
+    /// of a calibration study (a `[diagnosis]` study states them under `[diagnosis.prior]`).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub priors: BTreeMap<String, crate::study::diagnosis::Prior>,
 }
 
 impl StudyFile {
@@ -82,7 +87,7 @@ impl StudyFile {
 }
 
 /// The top-level sections, in the order a study file is written.
-pub const SECTIONS: [&str; 12] = [
+pub const SECTIONS: [&str; 13] = [
     "study",
     "materials",
     "pods",
@@ -95,6 +100,7 @@ pub const SECTIONS: [&str; 12] = [
     "factors",
     "plan",
     "diagnosis",
+    "priors",
 ];
 
 /// The sections a pod study must have.

@@ -153,6 +153,20 @@ pub struct SeriesPoint {
     pub values: Vec<f64>,
     /// How many replicates a template asks for.
     pub replicates: Option<usize>,
+    /// The printed summary of replicates not given one by one: mean ± SD over n (a block
+    /// with `mean`, `sd` and `n` and no `values`).
+    pub summary: Option<Summary>,
+}
+
+/// Replicates as a paper prints them: mean ± sample SD over n, in the quantity's unit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Summary {
+    /// Mean.
+    pub mean: f64,
+    /// Sample standard deviation of one replicate.
+    pub sd: f64,
+    /// Number of replicates.
+    pub n: u32,
 }
 
 /// One quantity of one rig measured at several conditions: what the diagnosis loop tests
@@ -195,16 +209,22 @@ pub fn study_series(file: &super::StudyFile) -> Vec<Series> {
                     condition: BTreeMap::from([(c.key.to_owned(), p.condition)]),
                     values: p.values.clone(),
                     replicates: p.replicates,
+                    summary: None,
                 })
                 .collect(),
         });
     }
     let first = out.len();
     for m in measurement_blocks(file) {
+        let summary = match (&m.values, m.mean, m.sd, m.n) {
+            (None, Some(mean), Some(sd), Some(n)) => Some(Summary { mean, sd, n }),
+            _ => None,
+        };
         let point = SeriesPoint {
             values: m.values.clone().unwrap_or_default(),
             condition: m.condition.clone(),
             replicates: None,
+            summary,
         };
         match out[first..]
             .iter_mut()

@@ -84,6 +84,7 @@ pub(crate) fn validate(
     if let Some(d) = &file.diagnosis {
         v.errors.extend(crate::study::diagnosis::validate(src, d));
     }
+    v.priors(file);
     let mut sets = None;
     if let Some(rig) = &file.rig {
         let (found, errors) = crate::study::pull_off::validate(
@@ -338,6 +339,25 @@ impl Validator<'_, '_> {
 }
 
 impl Validator<'_, '_> {
+    /// `[priors]`: each a base parameter of a rig the study measures, with a mean inside its
+    /// limits and an SD > 0.
+    fn priors(&mut self, file: &StudyFile) {
+        let parameters: Vec<&crate::rigs::parameter::RigParameter> = file
+            .measurements
+            .iter()
+            .filter_map(|m| crate::rigs::catalogue::find(&m.experiment))
+            .flat_map(|k| k.parameters)
+            .collect();
+        for (name, prior) in &file.priors {
+            let key = KeyPath::root().key("priors").key(name);
+            if let Err(reason) =
+                crate::study::diagnosis::check_prior_among(name, prior, &parameters)
+            {
+                self.fail(&key, reason);
+            }
+        }
+    }
+
     /// The pods touch each other and the walls, so those pairs must exist.
     fn contacts(&mut self, particles: Particles<'_>, file: &StudyFile) {
         let pod = particles.material();
