@@ -124,11 +124,24 @@ fn a_truth_file_must_cover_every_point() {
     );
 }
 
-/// The rebound-and-press template with LIGGGHTS' truths from `file`.
-fn rebound_and_press(file: &str) -> Case {
-    let study = study_of(&section("template.toml"));
+/// The template `template` with LIGGGHTS' truths from `file`, both in the data folder.
+fn liggghts_case(template: &str, file: &str) -> Case {
+    let study = study_of(&section(template));
     let truth = truths_from_csv(&data_dir().join(file), &study.series()).unwrap();
     case_from_truth(study, truth)
+}
+
+/// The rebound-and-press template with LIGGGHTS' truths from `file`.
+fn rebound_and_press(file: &str) -> Case {
+    liggghts_case("template.toml", file)
+}
+
+/// The largest |a − b| over matching entries.
+fn largest_difference(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
 }
 
 /// The SJKR cohesion LIGGGHTS hid in cohesion-5e3.csv, J/m³.
@@ -214,11 +227,7 @@ fn the_rigs_agree_with_liggghts() {
     )
     .truth;
     for (ei, tolerance) in [(0, 5e-4), (1, 0.01)] {
-        let worst = c.truth[ei]
-            .iter()
-            .zip(&ours[ei])
-            .map(|(t, o)| (t - o).abs())
-            .fold(0.0, f64::max);
+        let worst = largest_difference(&c.truth[ei], &ours[ei]);
         println!("experiment {ei}: largest difference {worst:.3e}");
         assert!(worst <= tolerance, "experiment {ei}: {worst} > {tolerance}");
     }
@@ -226,9 +235,7 @@ fn the_rigs_agree_with_liggghts() {
 
 /// The roll template with LIGGGHTS' truths from `file`.
 fn roll(file: &str) -> Case {
-    let study = study_of(&section("roll-template.toml"));
-    let truth = truths_from_csv(&data_dir().join(file), &study.series()).unwrap();
-    case_from_truth(study, truth)
+    liggghts_case("roll-template.toml", file)
 }
 
 /// The rolling friction LIGGGHTS' `epsd2` used in roll-epsd-0.01.csv.
@@ -245,11 +252,7 @@ fn the_roll_rig_agrees_with_liggghts() {
         Some(("epsd_rolling", HIDDEN_ROLLING_FRICTION)),
     )
     .truth;
-    let worst = c.truth[0]
-        .iter()
-        .zip(&ours[0])
-        .map(|(t, o)| (t - o).abs())
-        .fold(0.0, f64::max);
+    let worst = largest_difference(&c.truth[0], &ours[0]);
     println!("LIGGGHTS {:?}\nArachis  {:?}", c.truth[0], ours[0]);
     println!("largest difference {worst:.3e}");
     assert!(worst <= 1e-3, "{worst}");
