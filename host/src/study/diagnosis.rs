@@ -1,4 +1,4 @@
-//! `[diagnosis]`: a study of the single-sphere rigs (rebound, press, fall, unload) written
+//! `[diagnosis]`: a study of the single-sphere rigs (rebound, press, fall, unload, roll) written
 //! for the diagnosis loop — the current calibration of their parameters and, per
 //! experiment, measurements at several conditions with replicates (or, in a template for
 //! `arachis synth`, how many replicates to make).
@@ -12,7 +12,7 @@
 //! [diagnosis.prior]                # optional: base parameters measured on the bench
 //! restitution = { mean = 0.48, sd = 0.02 }
 //! [[diagnosis.experiment]]
-//! kind = "rebound"                 # a single-sphere rig: rebound | press | fall | unload
+//! kind = "rebound"                 # a single-sphere rig: rebound | press | fall | unload | roll
 //! noise_sd = 0.01                  # optional: used only by `arachis synth`
 //! [[diagnosis.experiment.point]]
 //! condition = 0.05                 # the rig's one condition (drop height, m)
