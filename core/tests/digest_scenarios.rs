@@ -18,7 +18,8 @@
 mod common;
 use arachis_core::bond::{Bond, BondBreak, BondStorage};
 use arachis_core::prelude::*;
-use arachis_core::scenario::{BenchBed, ClumpSlide, MovingWallPile, PullOff};
+use arachis_core::scenario::hopper::{discharged_mass_g, CATCH_DEPTH_M, SHUTTER};
+use arachis_core::scenario::{BenchBed, ClumpSlide, Hopper, MovingWallPile, PullOff};
 use common::{run_threaded, Owned};
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -269,6 +270,52 @@ fn pull_off_matches_golden_digest() {
     assert_eq!(world.bonds().bonds().len(), scenario.bond_capacity() - 1);
 }
 
+/// Hopper: spheres, seed and orifice (µm) of the golden run.
+const HOPPER: Hopper = Hopper {
+    particles: 150,
+    seed: 7,
+    orifice_diameter_um: 40_000,
+};
+/// Hopper: steps before the shutter opens (0.2 s: the lowest spheres rest on it).
+const HOPPER_SETTLE_STEPS: u64 = 10_000;
+/// Hopper: steps while the shutter drops to the catch floor (0.1 s at 2 m/s).
+const HOPPER_SHUTTER_STEPS: u64 = 5_000;
+/// Hopper: steps of discharge after the shutter stopped.
+const HOPPER_FLOW_STEPS: u64 = 1_000;
+
+/// The golden hopper run, stepped by `run` (steps): settle, open, drop the shutter, stop it
+/// as the catch floor, discharge.
+fn hopper_run(world: &mut World<'_, Fx>, mut run: impl FnMut(&mut World<'_, Fx>, u64)) {
+    run(world, HOPPER_SETTLE_STEPS);
+    Hopper::open(world).unwrap();
+    run(world, HOPPER_SHUTTER_STEPS);
+    Hopper::catch(world).unwrap();
+    run(world, HOPPER_FLOW_STEPS);
+}
+
+#[test]
+fn hopper_matches_golden_digest() {
+    let mut arenas = Owned::<Fx>::with_lengths(HOPPER.storage_lengths());
+    let mut world = HOPPER.build(arenas.storage()).unwrap();
+    hopper_run(&mut world, |w, n| w.run(n).unwrap());
+    check_golden(
+        "hopper",
+        "A silo of 150 pod spheres (R 4 mm) with a 40 mm orifice plate: settled 0.2 s on the\n\
+         shutter, which then drops 0.2 m at 2 m/s and stops as the catch floor; 1 000 steps\n\
+         of discharge (core/src/scenario/hopper.rs).",
+        &world,
+    );
+    // The run exercises the orifice (spheres went through it) and the stopped shutter.
+    let discharged = discharged_mass_g(&world);
+    let shutter_z_mm = match world.walls()[SHUTTER.0 as usize].shape {
+        arachis_core::wall::WallShape::Plane(p) => p.point.z.to_f64(),
+        _ => unreachable!("the shutter is a plane"),
+    };
+    println!("hopper: {discharged:.2} g discharged, shutter at {shutter_z_mm:.3} mm");
+    assert!(discharged > 0.0, "nothing went through the orifice");
+    assert!((shutter_z_mm + CATCH_DEPTH_M * 1e3).abs() < 1e-3);
+}
+
 /// Thread counts the goldens must not depend on.
 const THREAD_COUNTS: [usize; 5] = [1, 2, 3, 4, 7];
 
@@ -312,6 +359,15 @@ fn golden_digests_are_identical_for_any_thread_count() {
             world.digest(),
             golden("moving_wall_pile").digest,
             "pile, {threads} threads"
+        );
+
+        let mut arenas = Owned::<Fx>::with_lengths(HOPPER.storage_lengths());
+        let mut world = HOPPER.build(arenas.storage()).unwrap();
+        hopper_run(&mut world, |w, n| run_threaded(w, n, threads));
+        assert_eq!(
+            world.digest(),
+            golden("hopper").digest,
+            "hopper, {threads} threads"
         );
 
         let scenario = PullOff::default();

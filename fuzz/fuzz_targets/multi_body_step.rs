@@ -78,6 +78,11 @@ enum WallIn {
         lo: Real3,
         hi: Real3,
     },
+    OrificePlate {
+        normal: Real3,
+        offset: Real,
+        hole: Real,
+    },
 }
 
 #[derive(Arbitrary, Debug, Clone)]
@@ -216,6 +221,15 @@ fn run<S: Scalar>(inp: &Input) -> Vec<(bool, u64)> {
             WallIn::AaBox { lo, hi } => WallGeometry::AaBox {
                 min_m: lo.get(-0.03),
                 max_m: hi.get(0.03),
+            },
+            WallIn::OrificePlate {
+                normal,
+                offset,
+                hole,
+            } => WallGeometry::OrificePlate {
+                centre_m: [0.0, 0.0, offset.get(0.004)],
+                normal: normal.get(1.0),
+                hole_radius_m: hole.get(0.005),
             },
         };
         let mut spec = WallSpec::fixed(geometry, b);

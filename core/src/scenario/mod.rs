@@ -11,6 +11,7 @@
 //! | scenario | file | what it exercises |
 //! |---|---|---|
 //! | [`BenchBed`] | `bench_bed.rs` | DESIGN §8 pour into a steel cylinder: many sphere–sphere and sphere–wall contacts |
+//! | [`Hopper`] | `hopper.rs` | a silo of pod spheres discharging through an orifice plate onto a catch floor: a wall with a hole, a wall set moving and stopped mid-run |
 //! | [`ClumpSlide`] | `clump_slide.rs` | two- and three-sphere clumps sliding down a steel incline into each other and a stop wall |
 //! | [`MovingWallPile`] | `moving_wall.rs` | a small pile settled on a floor, then a plane blade moving through it at a prescribed velocity |
 //! | [`PackedBlock`] | `packed_block.rs` | spheres on a cubic lattice pressed into each other and a steel box: a dense contact network at any size (throughput at scale) |
@@ -30,6 +31,7 @@
 
 pub mod bench_bed;
 pub mod clump_slide;
+pub mod hopper;
 pub mod insertion;
 pub mod materials;
 pub mod measure;
@@ -40,6 +42,7 @@ pub mod pull_off;
 
 pub use bench_bed::BenchBed;
 pub use clump_slide::ClumpSlide;
+pub use hopper::Hopper;
 pub use moving_wall::MovingWallPile;
 pub use packed_block::PackedBlock;
 pub use prng::SplitMix64;
@@ -78,6 +81,15 @@ pub enum ScenarioError {
     /// Ordering by layers ([`insertion::order_by_layers`]) needs a world of single spheres,
     /// without bonds, that has not stepped yet, and a positive layer thickness.
     NotReorderable,
+    /// An orifice diameter outside what the hopper can hold ([`hopper`]).
+    OrificeOutOfRange {
+        /// The diameter asked for, µm.
+        diameter_um: i64,
+        /// Smallest diameter, µm.
+        min_um: i64,
+        /// Largest diameter, µm.
+        max_um: i64,
+    },
 }
 
 impl From<SetupError> for ScenarioError {
@@ -123,6 +135,14 @@ impl fmt::Display for ScenarioError {
                 f,
                 "spheres can only be ordered by layers in a world of single spheres, \
                  without bonds, that has not stepped yet, and with a positive layer thickness"
+            ),
+            ScenarioError::OrificeOutOfRange {
+                diameter_um,
+                min_um,
+                max_um,
+            } => write!(
+                f,
+                "an orifice of {diameter_um} µm is outside the hopper's range {min_um}–{max_um} µm"
             ),
         }
     }

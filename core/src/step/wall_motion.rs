@@ -22,6 +22,7 @@ pub(crate) fn move_walls<S: Scalar>(walls: &mut [Wall<S>], dt: S) -> Result<S, S
                 WallShape::Plane(p) => p.point.is_valid(),
                 WallShape::Cylinder(c) => c.base.is_valid(),
                 WallShape::AaBox(b) => b.min.is_valid() & b.max.is_valid(),
+                WallShape::OrificePlate(o) => o.centre.is_valid(),
             };
         if !ok {
             return Err(StepError::Overflow {

@@ -1,5 +1,6 @@
 //! Walls: infinite planes ([`Plane`]), finite or infinite cylinders with particles inside
-//! ([`Cylinder`]) and axis-aligned boxes with particles inside ([`AaBox`]). Each wall moves
+//! ([`Cylinder`]), axis-aligned boxes with particles inside ([`AaBox`]) and flat plates with a
+//! circular hole ([`OrificePlate`], a hopper's bottom). Each wall moves
 //! at a prescribed velocity (mm/ms = m/s), e.g. the repose test lifts a cylinder at 0.05 m/s.
 //!
 //! Seam for triangle meshes: [`WallShape`] is `#[non_exhaustive]`; a mesh wall becomes a new
@@ -10,10 +11,12 @@
 
 pub mod aabox;
 pub mod cylinder;
+pub mod orifice;
 pub mod plane;
 
 pub use aabox::AaBox;
 pub use cylinder::Cylinder;
+pub use orifice::OrificePlate;
 pub use plane::Plane;
 
 use crate::error::SetupError;
@@ -41,6 +44,8 @@ pub enum WallShape<S> {
     Cylinder(Cylinder<S>),
     /// Axis-aligned box, particles inside.
     AaBox(AaBox<S>),
+    /// Flat plate with a circular hole.
+    OrificePlate(OrificePlate<S>),
 }
 
 /// A wall in the world.
@@ -66,13 +71,14 @@ impl<S: Scalar> WallShape<S> {
             WallShape::Plane(p) => p.contact(c, r),
             WallShape::Cylinder(y) => y.contact(c, r),
             WallShape::AaBox(b) => b.contact(face, c, r),
+            WallShape::OrificePlate(o) => o.contact(c, r),
         }
     }
 
-    /// Number of faces: 1 for planes and cylinders, 6 for boxes.
+    /// Number of faces: 1 for planes, cylinders and orifice plates, 6 for boxes.
     pub fn face_count(&self) -> u32 {
         match self {
-            WallShape::Plane(_) | WallShape::Cylinder(_) => 1,
+            WallShape::Plane(_) | WallShape::Cylinder(_) | WallShape::OrificePlate(_) => 1,
             WallShape::AaBox(_) => aabox::BOX_FACES,
         }
     }
@@ -98,6 +104,7 @@ impl<S: Scalar> WallShape<S> {
             WallShape::Plane(p) => p.faces_near(c, r, margin),
             WallShape::Cylinder(y) => y.faces_near(c, r, margin),
             WallShape::AaBox(b) => b.faces_near(c, r, margin),
+            WallShape::OrificePlate(o) => o.faces_near(c, r, margin),
         }
     }
 
@@ -116,6 +123,7 @@ impl<S: Scalar> WallShape<S> {
                 b.min += d;
                 b.max += d;
             }
+            WallShape::OrificePlate(o) => o.centre += d,
         }
     }
 
@@ -144,6 +152,12 @@ impl<S: Scalar> WallShape<S> {
                 f(3);
                 v(b.min, &mut f);
                 v(b.max, &mut f);
+            }
+            WallShape::OrificePlate(o) => {
+                f(4);
+                v(o.centre, &mut f);
+                v(o.normal, &mut f);
+                f(o.hole_radius.to_bits());
             }
         }
     }
@@ -176,6 +190,16 @@ pub enum WallGeometry {
         min_m: [f64; 3],
         /// Upper corner, m.
         max_m: [f64; 3],
+    },
+    /// Flat plate through `centre_m` with unit `normal`, pierced by a circular hole of
+    /// radius `hole_radius_m` centred on `centre_m` ([`OrificePlate`]).
+    OrificePlate {
+        /// The hole's centre, m.
+        centre_m: [f64; 3],
+        /// Normal of the plate (normalised at set-up; either side).
+        normal: [f64; 3],
+        /// Radius of the hole, m.
+        hole_radius_m: f64,
     },
 }
 
@@ -284,6 +308,30 @@ impl WallSpec {
                 WallShape::AaBox(AaBox {
                     min: q3(lo, LENGTH_M_TO_MM, "box corner")?,
                     max: q3(hi, LENGTH_M_TO_MM, "box corner")?,
+                })
+            }
+            WallGeometry::OrificePlate {
+                centre_m,
+                normal,
+                hole_radius_m,
+            } => {
+                let r = finite(hole_radius_m, "orifice radius")?;
+                if r <= 0.0 {
+                    return Err(SetupError::BadWall {
+                        reason: "orifice radius must be > 0",
+                    });
+                }
+                WallShape::OrificePlate(OrificePlate {
+                    centre: q3(centre_m, LENGTH_M_TO_MM, "orifice centre")?,
+                    normal: q3(
+                        unit(normal, "orifice plate normal")?,
+                        1.0,
+                        "orifice plate normal",
+                    )?,
+                    hole_radius: crate::num::quantise::quantise(
+                        r * LENGTH_M_TO_MM,
+                        "orifice radius",
+                    )?,
                 })
             }
         };

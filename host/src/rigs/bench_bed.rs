@@ -248,7 +248,7 @@ impl BenchBedRig {
 }
 
 /// The pod–pod and pod–steel pairs with `values` applied over DESIGN §8's.
-fn pairs(values: &ParameterValues) -> Result<(PairSpec, PairSpec), RigError> {
+pub(crate) fn pairs(values: &ParameterValues) -> Result<(PairSpec, PairSpec), RigError> {
     let (mut pod_pod, mut pod_steel) = (POD_POD, POD_STEEL);
     for (key, &value) in values {
         let Some(c) = COEFFICIENTS.iter().find(|c| c.name == key) else {

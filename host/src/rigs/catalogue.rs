@@ -16,6 +16,7 @@ pub const RIGS: &[&RigKind] = &[
     &super::pull_off::KIND,
     &super::harvest::KIND,
     &super::bench_bed::KIND,
+    &super::hopper::KIND,
     &super::rebound::KIND,
     &super::press::KIND,
     &super::fall::KIND,

@@ -11,6 +11,7 @@
 //! | `pull_off` | [`pull_off`] | detachment force of a pod off its stalk (seed 001 §2.3) |
 //! | `harvest` | [`harvest`] | loss rate through a picking drum (seed 001 §3.3) |
 //! | `bench_bed` | [`bench_bed`] | bed height of pod spheres poured into a cylinder (DESIGN §8) |
+//! | `hopper` | [`hopper`] | mass flow rate of pod spheres out of a silo through an orifice |
 //! | `rebound`, `press`, `fall`, `unload`, `roll` | [`rebound`], [`press`], [`fall`], [`unload`], [`roll`] | one pod sphere: restitution, overlap, fall time, rolling speed |
 //!
 //! What rigs share lives beside them: the pod world ([`pod_world`], [`pod_bench`]), the
@@ -25,6 +26,7 @@ pub mod conformance;
 pub mod fall;
 pub mod harvest;
 pub mod harvest_pass;
+pub mod hopper;
 pub mod incline;
 pub mod kind;
 pub mod parameter;
