@@ -18,6 +18,7 @@
 mod common;
 use arachis_core::bond::{Bond, BondBreak, BondStorage};
 use arachis_core::prelude::*;
+use arachis_core::scenario::drum::{bed_angle_deg, Drum};
 use arachis_core::scenario::hopper::{discharged_mass_g, CATCH_DEPTH_M, SHUTTER};
 use arachis_core::scenario::{BenchBed, ClumpSlide, Hopper, MovingWallPile, PullOff};
 use common::{run_threaded, Owned};
@@ -316,6 +317,47 @@ fn hopper_matches_golden_digest() {
     assert!((shutter_z_mm + CATCH_DEPTH_M * 1e3).abs() < 1e-3);
 }
 
+/// Drum: spheres and seed of the golden run.
+const DRUM: Drum = Drum {
+    particles: 100,
+    seed: 3,
+};
+/// Drum: steps before it spins (0.2 s: the bed has landed), its speed (rad/s) and the steps
+/// it spins (0.1 s, a turn of 0.1 rad).
+const DRUM_SETTLE_STEPS: u64 = 10_000;
+const DRUM_SPEED_RAD_S: f64 = 1.0;
+const DRUM_SPIN_STEPS: u64 = 5_000;
+
+/// The golden drum run, stepped by `run` (steps); returns the bed's angle (degrees) before
+/// the drum turns.
+fn drum_run(world: &mut World<'_, Fx>, mut run: impl FnMut(&mut World<'_, Fx>, u64)) -> f64 {
+    run(world, DRUM_SETTLE_STEPS);
+    let before = bed_angle_deg(world, DRUM_SPEED_RAD_S);
+    Drum::spin(world, DRUM_SPEED_RAD_S).unwrap();
+    run(world, DRUM_SPIN_STEPS);
+    before
+}
+
+#[test]
+fn drum_matches_golden_digest() {
+    let mut arenas = Owned::<Fx>::with_lengths(DRUM.storage_lengths());
+    let mut world = DRUM.build(arenas.storage()).unwrap();
+    let before = drum_run(&mut world, |w, n| w.run(n).unwrap());
+    check_golden(
+        "drum",
+        "100 pod spheres (R 4 mm) settled 0.2 s in a steel drum of radius 60 mm and length\n\
+         40 mm, then the drum and its end plates spin at 1 rad/s about the horizontal axis\n\
+         for 0.1 s (core/src/scenario/drum.rs).",
+        &world,
+    );
+    // The spinning walls carried the bed round with them, as a block: its angle rose by the
+    // drum's turn (5.73°), within a degree.
+    let rise = bed_angle_deg(&world, DRUM_SPEED_RAD_S) - before;
+    let turn = (DRUM_SPEED_RAD_S * DRUM_SPIN_STEPS as f64 * world.timestep_s()).to_degrees();
+    println!("drum: the bed rose {rise:.2}° while the drum turned {turn:.2}°");
+    assert!((rise - turn).abs() < 1.0);
+}
+
 /// Thread counts the goldens must not depend on.
 const THREAD_COUNTS: [usize; 5] = [1, 2, 3, 4, 7];
 
@@ -359,6 +401,15 @@ fn golden_digests_are_identical_for_any_thread_count() {
             world.digest(),
             golden("moving_wall_pile").digest,
             "pile, {threads} threads"
+        );
+
+        let mut arenas = Owned::<Fx>::with_lengths(DRUM.storage_lengths());
+        let mut world = DRUM.build(arenas.storage()).unwrap();
+        let _ = drum_run(&mut world, |w, n| run_threaded(w, n, threads));
+        assert_eq!(
+            world.digest(),
+            golden("drum").digest,
+            "drum, {threads} threads"
         );
 
         let mut arenas = Owned::<Fx>::with_lengths(HOPPER.storage_lengths());

@@ -236,7 +236,12 @@ fn run<S: Scalar>(inp: &Input) -> Vec<(bool, u64)> {
         if *move_it {
             spec.velocity_m_s = velocity.get(SPEED_M_S);
         }
-        let _ = w.add_wall(spec);
+        if let Ok(id) = w.add_wall(spec) {
+            // A moving wall also spins about its own axis (a drum); a box refuses.
+            if *move_it {
+                let _ = w.set_wall_spin_rad_s(id, velocity.get(SPIN_RAD_S)[2]);
+            }
+        }
     }
     let max_dt = w.max_timestep_s();
     let dt = if max_dt.is_finite() {

@@ -12,6 +12,7 @@
 //! |---|---|---|
 //! | [`BenchBed`] | `bench_bed.rs` | DESIGN §8 pour into a steel cylinder: many sphere–sphere and sphere–wall contacts |
 //! | [`Hopper`] | `hopper.rs` | a silo of pod spheres discharging through an orifice plate onto a catch floor: a wall with a hole, a wall set moving and stopped mid-run |
+//! | [`Drum`] | `drum.rs` | pod spheres in a drum spinning about a horizontal axis, end plates spinning with it: spinning walls |
 //! | [`ClumpSlide`] | `clump_slide.rs` | two- and three-sphere clumps sliding down a steel incline into each other and a stop wall |
 //! | [`MovingWallPile`] | `moving_wall.rs` | a small pile settled on a floor, then a plane blade moving through it at a prescribed velocity |
 //! | [`PackedBlock`] | `packed_block.rs` | spheres on a cubic lattice pressed into each other and a steel box: a dense contact network at any size (throughput at scale) |
@@ -31,6 +32,7 @@
 
 pub mod bench_bed;
 pub mod clump_slide;
+pub mod drum;
 pub mod hopper;
 pub mod insertion;
 pub mod materials;
@@ -42,6 +44,7 @@ pub mod pull_off;
 
 pub use bench_bed::BenchBed;
 pub use clump_slide::ClumpSlide;
+pub use drum::Drum;
 pub use hopper::Hopper;
 pub use moving_wall::MovingWallPile;
 pub use packed_block::PackedBlock;

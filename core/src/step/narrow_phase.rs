@@ -251,6 +251,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         let Some((normal, overlap)) = w.shape.contact(key & 0xF, si.position, si.radius) else {
             return Fast::Apart;
         };
+        let wall_velocity = wall_velocity_at(w, si, normal, overlap);
         let pair = &sh.pairs[si.material as usize][w.material as usize];
         if !pair.fused.eligible {
             return Fast::General;
@@ -264,7 +265,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
             r_i: f(si.radius),
             r_star: f(si.radius),
             m_star: f(si.mass),
-            v_centres: w.velocity.map(f) - si.velocity.map(f),
+            v_centres: wall_velocity.map(f) - si.velocity.map(f),
             spin_i: si.spin.map(f),
             spin_j: Vec3::ZERO,
             offset_i: si.in_clump().then(|| si.arm.map(f)),
@@ -497,9 +498,21 @@ fn wall_touch<S: Scalar>(
         d2: S::ZERO,
         normal,
         overlap,
-        wall_velocity: w.velocity,
+        wall_velocity: wall_velocity_at(w, s, normal, overlap),
         state,
     }))
+}
+
+/// The velocity of wall `w`'s surface where sphere `s` touches it (unit `normal` from the
+/// sphere towards the wall, `overlap` α, mm): at the contact point c = r + n̂(R − α/2), the
+/// point the contact law takes the sphere's lever to. Checked arithmetic; the wall's own
+/// velocity, the same bits, unless it spins.
+#[inline(always)]
+fn wall_velocity_at<S: Scalar>(w: &Wall<S>, s: &Sphere<S>, normal: Vec3<S>, overlap: S) -> Vec3<S> {
+    if w.spin == S::ZERO {
+        return w.velocity;
+    }
+    w.velocity_at(s.position + normal.scale(s.radius - overlap * S::HALF))
 }
 
 /// The contact of neighbour-list pair (i < j), if it touches (and is not bonded).

@@ -55,13 +55,45 @@ pub struct Wall<S> {
     pub shape: WallShape<S>,
     /// Prescribed velocity, mm/ms (= m/s).
     pub velocity: Vec3<S>,
+    /// Spin about the wall's own axis of symmetry ([`WallShape::spin_axis`]), rad/ms,
+    /// right-handed: a rotating drum or turntable. The shape does not change as it spins;
+    /// only its surface moves ([`Wall::velocity_at`]).
+    pub spin: S,
     /// Material id.
     pub material: u16,
     /// Total contact force the particles exert on this wall in the last step, N.
     pub force: Vec3<S>,
 }
 
+impl<S: Scalar> Wall<S> {
+    /// The velocity of the wall's surface at point `p` (mm), mm/ms: its translation plus, for
+    /// a spinning wall, Ω·â × (p − o) with â and o its axis and a point on it. The same bits
+    /// as `velocity` for a wall that does not spin.
+    #[inline(always)]
+    pub fn velocity_at(&self, p: Vec3<S>) -> Vec3<S> {
+        if self.spin == S::ZERO {
+            return self.velocity;
+        }
+        match self.shape.spin_axis() {
+            Some((origin, axis)) => self.velocity + axis.scale(self.spin).cross(p - origin),
+            None => self.velocity,
+        }
+    }
+}
+
 impl<S: Scalar> WallShape<S> {
+    /// The axis about which the shape may spin without changing: a point on it and its unit
+    /// direction. A cylinder's own axis; the normal of a plane or an orifice plate through
+    /// its point or the hole's centre; none for a box.
+    pub fn spin_axis(&self) -> Option<(Vec3<S>, Vec3<S>)> {
+        match self {
+            WallShape::Plane(p) => Some((p.point, p.normal)),
+            WallShape::Cylinder(c) => Some((c.base, c.axis)),
+            WallShape::OrificePlate(o) => Some((o.centre, o.normal)),
+            WallShape::AaBox(_) => None,
+        }
+    }
+
     /// The contact of a sphere (centre `c`, radius `r`, mm) with face `face` of this wall, if
     /// they overlap: the unit normal from the sphere centre towards the wall and the overlap
     /// α > 0, mm. Planes and cylinders have one face (0), boxes six ([`aabox`]).
@@ -338,6 +370,7 @@ impl WallSpec {
         Ok(Wall {
             shape,
             velocity: q3(self.velocity_m_s, VELOCITY_M_S_TO_MM_MS, "wall velocity")?,
+            spin: S::ZERO,
             material: self.material.0,
             force: Vec3::ZERO,
         })

@@ -57,6 +57,10 @@ impl<S: Scalar> World<'_, S> {
             w.shape.for_each_bits(|x| h.u64(x));
             h.v(w.velocity);
             h.u64(w.material as u64);
+            // Hashed only when set, so the digests of worlds without spinning walls stay.
+            if w.spin != S::ZERO {
+                h.u64(w.spin.to_bits());
+            }
         }
         // Bond state; hashes nothing in worlds that never used bonds.
         self.bond_table.hash_into(&mut h);

@@ -385,6 +385,26 @@ impl<S: Scalar> World<'_, S> {
         Ok(())
     }
 
+    /// Spin a wall about its own axis of symmetry at `omega_rad_s` (rad/s, right-handed
+    /// about the axis of [`crate::wall::WallShape::spin_axis`]: a cylinder's axis, a plane's
+    /// normal through its point), e.g. a rotating drum and its end plates. The shape stays
+    /// where it is; its surface moves, and contacts see that motion. 0 stops it. A box cannot
+    /// spin (its shape would change): [`SetupError::BadWall`].
+    pub fn set_wall_spin_rad_s(&mut self, id: WallId, omega_rad_s: f64) -> Result<(), SetupError> {
+        let omega = finite(omega_rad_s, "wall spin")?;
+        let w = self
+            .walls
+            .get_mut(id.0 as usize)
+            .ok_or(SetupError::UnknownId { id: id.0 })?;
+        if w.shape.spin_axis().is_none() && omega != 0.0 {
+            return Err(SetupError::BadWall {
+                reason: "a box cannot spin about an axis of symmetry",
+            });
+        }
+        w.spin = quantise(omega * ANGULAR_VELOCITY_RAD_S_TO_RAD_MS, "wall spin")?;
+        Ok(())
+    }
+
     /// Set the body's velocity (m/s) and angular velocity (rad/s), e.g. to launch a test.
     pub fn set_body_velocity(
         &mut self,

@@ -17,6 +17,7 @@ pub const RIGS: &[&RigKind] = &[
     &super::harvest::KIND,
     &super::bench_bed::KIND,
     &super::hopper::KIND,
+    &super::drum::KIND,
     &super::rebound::KIND,
     &super::press::KIND,
     &super::fall::KIND,

@@ -12,17 +12,19 @@
 //! | `harvest` | [`harvest`] | loss rate through a picking drum (seed 001 §3.3) |
 //! | `bench_bed` | [`bench_bed`] | bed height of pod spheres poured into a cylinder (DESIGN §8) |
 //! | `hopper` | [`hopper`] | mass flow rate of pod spheres out of a silo through an orifice |
+//! | `drum` | [`drum`] | dynamic angle of repose of pod spheres in a rotating drum |
 //! | `rebound`, `press`, `fall`, `unload`, `roll` | [`rebound`], [`press`], [`fall`], [`unload`], [`roll`] | one pod sphere: restitution, overlap, fall time, rolling speed |
 //!
 //! What rigs share lives beside them: the pod world ([`pod_world`], [`pod_bench`]), the
-//! single sphere ([`single_sphere`]); [`repose_surrogate`] is a test stand-in for the repose
-//! rig. [`kind`] says what the catalogue knows of a rig, [`parameter`] what a rig's
+//! single sphere ([`single_sphere`]), pod spheres in bulk ([`sphere_bulk`]);
+//! [`repose_surrogate`] is a test stand-in for the repose rig. [`kind`] says what the catalogue knows of a rig, [`parameter`] what a rig's
 //! parameters are; [`conformance`] is the test every rig must pass.
 
 pub mod bench_bed;
 pub mod catalogue;
 pub mod compression;
 pub mod conformance;
+pub mod drum;
 pub mod fall;
 pub mod harvest;
 pub mod harvest_pass;
@@ -40,4 +42,5 @@ pub mod repose_picture;
 pub mod repose_surrogate;
 pub mod roll;
 pub mod single_sphere;
+pub mod sphere_bulk;
 pub mod unload;

@@ -1,0 +1,187 @@
+//! What the rigs of pod spheres in bulk share (the [`super::hopper`] and the
+//! [`super::drum`]): their parameters — the bench bed's six pair coefficients
+//! (`pod-pod.static_friction`, …, the same names as in every rig) and three optional pod–pod
+//! effects, off unless set, with the pod world's names and finite-difference steps
+//! (`pod-pod.cohesion_j_m3`, SJKR; `pod-pod.epsd_rolling_friction`;
+//! `pod-pod.viscoelastic_time_s`) — and how a run's values become the core's pairs.
+//!
+//! ```
+//! use arachis::calibration::ParameterValues;
+//! use arachis::rigs::sphere_bulk::Values;
+//! let values = ParameterValues::from([("pod-pod.cohesion_j_m3".to_owned(), 2.0e4)]);
+//! let v = Values::of("hopper", &values).unwrap();
+//! assert_eq!(v.effects.cohesion_energy_density_j_m3, 2.0e4);
+//! assert_eq!(v.pod_pod.friction, 0.854); // DESIGN §8's, not given
+//! ```
+
+use arachis_core::body::StorageLengths;
+use arachis_core::effects::EffectSpec;
+use arachis_core::prelude::*;
+use arachis_core::scenario::bench_bed::{BenchBed, POD_MATERIAL};
+use serde_json::json;
+
+use super::bench_bed::{self, PairCoefficient};
+use super::parameter::{diagnosis_parameters_with_effects, Parameter, RigParameter};
+use super::pod_world::parameters::{ParameterSpec, EFFECTS as POD_EFFECTS};
+use crate::calibration::{ParameterValues, RigError};
+
+/// What a parameter of a sphere-bulk rig sets.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Setting {
+    /// A coefficient of the bench bed's pairs.
+    Coefficient(PairCoefficient),
+    /// An optional effect of the pod–pod pair.
+    Effect(Effect),
+}
+
+/// An optional pod–pod effect.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Effect {
+    /// SJKR cohesion energy density, J/m³.
+    Cohesion,
+    /// EPSD rolling friction coefficient.
+    EpsdRolling,
+    /// Viscoelastic relaxation time, s.
+    Viscoelastic,
+}
+
+/// The bench bed's coefficient `c` as a sphere-bulk parameter.
+const fn coefficient(c: &Parameter<PairCoefficient>) -> Parameter<Setting> {
+    Parameter {
+        name: c.name,
+        label: c.label,
+        description: c.description,
+        unit: c.unit,
+        sets: Setting::Coefficient(c.sets),
+        limits: c.limits,
+        fd_step: c.fd_step,
+        scale: c.scale,
+    }
+}
+
+/// The pod world's optional effect `p` as a sphere-bulk parameter setting `effect`.
+const fn effect(p: &ParameterSpec, effect: Effect) -> Parameter<Setting> {
+    Parameter {
+        name: p.name,
+        label: p.label,
+        description: p.description,
+        unit: p.unit,
+        sets: Setting::Effect(effect),
+        limits: p.limits,
+        fd_step: p.fd_step,
+        scale: p.scale,
+    }
+}
+
+const C: &[Parameter<PairCoefficient>; 6] = &bench_bed::COEFFICIENTS;
+
+/// The calibratable parameters: the bench bed's pair coefficients.
+pub const COEFFICIENTS: [Parameter<Setting>; 6] = [
+    coefficient(&C[0]),
+    coefficient(&C[1]),
+    coefficient(&C[2]),
+    coefficient(&C[3]),
+    coefficient(&C[4]),
+    coefficient(&C[5]),
+];
+
+/// The optional effects, with the pod world's names and steps.
+pub const EFFECTS: [Parameter<Setting>; 3] = [
+    effect(&POD_EFFECTS[0], Effect::Cohesion),
+    effect(&POD_EFFECTS[1], Effect::EpsdRolling),
+    effect(&POD_EFFECTS[2], Effect::Viscoelastic),
+];
+
+/// The parameters for a diagnosis: the coefficients, then the effects.
+pub const PARAMETERS: [RigParameter; 9] =
+    diagnosis_parameters_with_effects(&COEFFICIENTS, &EFFECTS);
+
+/// A run's parameter values as the core takes them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Values {
+    /// The pod–pod pair.
+    pub pod_pod: PairSpec,
+    /// The pod–steel pair.
+    pub pod_steel: PairSpec,
+    /// The pod–pod pair's optional effects.
+    pub effects: EffectSpec,
+}
+
+impl Values {
+    /// The values of `values` over DESIGN §8's, for the rig named `rig` (in messages); an
+    /// unknown parameter or a value outside its limits is refused.
+    pub fn of(rig: &str, values: &ParameterValues) -> Result<Self, RigError> {
+        let mut coefficients = ParameterValues::new();
+        let mut effects = EffectSpec::default();
+        for (key, &value) in values {
+            let Some(p) = COEFFICIENTS.iter().chain(&EFFECTS).find(|p| p.name == key) else {
+                let known: Vec<&str> = COEFFICIENTS
+                    .iter()
+                    .chain(&EFFECTS)
+                    .map(|p| p.name)
+                    .collect();
+                return Err(RigError(format!(
+                    "the {rig} rig has no parameter '{key}' (it has {})",
+                    known.join(", ")
+                )));
+            };
+            p.limits
+                .check(value)
+                .map_err(|why| RigError(format!("{key}: {why}")))?;
+            match p.sets {
+                Setting::Coefficient(_) => {
+                    coefficients.insert(key.clone(), value);
+                }
+                Setting::Effect(Effect::Cohesion) => effects.cohesion_energy_density_j_m3 = value,
+                Setting::Effect(Effect::EpsdRolling) => effects.epsd_rolling_friction = value,
+                Setting::Effect(Effect::Viscoelastic) => effects.viscoelastic_time_s = value,
+            }
+        }
+        let (pod_pod, pod_steel) = bench_bed::pairs(&coefficients)?;
+        Ok(Values {
+            pod_pod,
+            pod_steel,
+            effects,
+        })
+    }
+
+    /// Whether an optional effect is on.
+    fn any_effect(&self) -> bool {
+        self.effects != EffectSpec::default()
+    }
+
+    /// `lengths` with room for the effects' contact history when they keep one.
+    pub fn storage_lengths(&self, lengths: StorageLengths) -> StorageLengths {
+        if self.effects.needs_history() {
+            lengths.with_effects()
+        } else {
+            lengths
+        }
+    }
+
+    /// Set the pairs and effects in a world built with the bench bed's materials.
+    pub fn apply(&self, world: &mut World<'_, Fx>) -> Result<(), String> {
+        BenchBed::set_pairs(world, self.pod_pod, self.pod_steel).map_err(|e| e.to_string())?;
+        if self.any_effect() {
+            world
+                .set_pair_effects(POD_MATERIAL, POD_MATERIAL, self.effects)
+                .map_err(|e| e.to_string())?;
+        }
+        Ok(())
+    }
+
+    /// The values as a run specification's entries: the pairs' coefficients, and the effects
+    /// only when one is on (so a specification without effects keeps its hash).
+    pub fn specification(&self, spec: &mut serde_json::Value) {
+        let pair = |p: &PairSpec| json!([p.restitution, p.friction, p.rolling_friction]);
+        spec["pod_pod"] = pair(&self.pod_pod);
+        spec["pod_steel"] = pair(&self.pod_steel);
+        if self.any_effect() {
+            spec["pod_pod_effects"] = json!([
+                self.effects.cohesion_energy_density_j_m3,
+                self.effects.epsd_rolling_friction,
+                self.effects.viscoelastic_time_s
+            ]);
+        }
+    }
+}
