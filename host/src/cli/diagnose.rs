@@ -20,6 +20,8 @@ use crate::study::Study;
 
 /// Replicates assumed for a proposed extra measurement.
 const PROPOSAL_REPLICATES: usize = 4;
+/// Width of the effect column of the ranking table, characters (the one-sphere effects' names).
+const EFFECT_COLUMN: usize = 14;
 /// A proposed measurement must raise the separation by this much (standard errors) to be
 /// worth making.
 const MIN_SEPARATION_GAIN: f64 = 0.01;
@@ -70,7 +72,20 @@ pub fn run(args: Args) -> Result<()> {
         lin.calibrated.iter().map(|p| p.name).collect::<Vec<_>>().join(", "),
         r.tested
     )?;
-    writeln!(s, "  rank effect         z       p         p(adj)    estimate ± SE                 identifiable  verdict")?;
+    // Names up to 14 characters (the one-sphere effects) keep the table as it always was;
+    // longer ones (`pod-pod.cohesion_j_m3`) widen the column.
+    let w = r
+        .candidates
+        .iter()
+        .map(|c| c.effect.name.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(EFFECT_COLUMN);
+    writeln!(
+        s,
+        "  rank {:<w$} z       p         p(adj)    estimate ± SE                 identifiable  verdict",
+        "effect"
+    )?;
     for (k, c) in r.candidates.iter().enumerate() {
         let verdict = match c.status {
             Status::Tested { claimed: true } => "MISSING: explains the misfit".to_string(),
@@ -84,7 +99,7 @@ pub fn run(args: Args) -> Result<()> {
         if let Status::Tested { .. } = c.status {
             writeln!(
                 s,
-                "  {:<4} {:<14} {:+7.2} {:<9.2e} {:<9.2e} {:+.3e} ± {:.3e} {:<5} {:<12.2} {}",
+                "  {:<4} {:<w$} {:+7.2} {:<9.2e} {:<9.2e} {:+.3e} ± {:.3e} {:<5} {:<12.2} {}",
                 k + 1,
                 c.effect.name,
                 c.z,
@@ -99,7 +114,7 @@ pub fn run(args: Args) -> Result<()> {
         } else {
             writeln!(
                 s,
-                "  -    {:<14} {:>7} {:<9} {:<9} {:<29} {:<12.2} {}",
+                "  -    {:<w$} {:>7} {:<9} {:<9} {:<29} {:<12.2} {}",
                 c.effect.name, "-", "-", "-", "-", c.identifiable_fraction, verdict
             )?;
         }
