@@ -66,15 +66,8 @@ fn packing_fraction(particles: f64, com_height_mm: f64) -> f64 {
 fn the_bench_bed_passes_the_rig_conformance_test() {
     // A short run of a small bed: conformance asks about the interface, not the physics.
     let values = values(&[("pod-pod.static_friction", 0.7)]);
-    let condition = condition(200.0, 0.05);
-    let request = RunRequest {
-        values: &values,
-        condition: &condition,
-        replicate: 0,
-    };
-    let rig = (KIND.build)(&Default::default(), &RigOptions::default()).unwrap();
-    let checked =
-        conformance::check(&KIND, rig.as_ref(), &request).unwrap_or_else(|e| panic!("{e}"));
+    let checked = conformance::check_fixed(&KIND, &values, &condition(200.0, 0.05))
+        .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(checked.responses.len(), 3);
 }
 

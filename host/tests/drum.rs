@@ -8,7 +8,6 @@ use arachis::rigs::conformance;
 use arachis::rigs::drum::{
     DrumRig, BASE_SEED, DEFAULT_PARTICLES, DYNAMIC_ANGLE, KIND, PARTICLES, ROTATION_SPEED,
 };
-use arachis::rigs::kind::RigOptions;
 use arachis_core::owned::OwnedStorage;
 use arachis_core::prelude::*;
 use arachis_core::scenario::bench_bed::TIMESTEP_S;
@@ -39,14 +38,8 @@ fn the_drum_passes_the_rig_conformance_test() {
         (ROTATION_SPEED.to_owned(), 60.0),
         (PARTICLES.to_owned(), 40.0),
     ]);
-    let request = RunRequest {
-        values: &values,
-        condition: &condition,
-        replicate: 0,
-    };
-    let rig = (KIND.build)(&Default::default(), &RigOptions::default()).unwrap();
     let checked =
-        conformance::check(&KIND, rig.as_ref(), &request).unwrap_or_else(|e| panic!("{e}"));
+        conformance::check_fixed(&KIND, &values, &condition).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(checked.responses.len(), 1);
 }
 

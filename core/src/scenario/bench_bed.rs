@@ -109,9 +109,7 @@ impl BenchBed {
         let r = SPHERE_RADIUS_UM as f64;
         let envelope_radius = INSERT_RADIUS_UM as f64 + r;
         let envelope_height = (INSERT_Z_MAX_UM - INSERT_Z_MIN_UM) as f64 + 2.0 * r;
-        let envelope = PI * envelope_radius * envelope_radius * envelope_height;
-        let sphere = 4.0 / 3.0 * PI * r * r * r;
-        libm::floor(MAX_FILL_FRACTION * envelope / sphere) as u32
+        fill_limit(PI * envelope_radius * envelope_radius * envelope_height)
     }
 
     /// Arena lengths this bed needs (one body and one sphere per particle).
@@ -145,12 +143,8 @@ impl BenchBed {
                 max,
             });
         }
-        let mut world = World::new(storage)?;
-        let pod = world.add_material(POD)?;
-        let steel = world.add_material(STEEL)?;
-        debug_assert_eq!((pod, steel), (POD_MATERIAL, STEEL_MATERIAL));
-        Self::set_pairs(&mut world, POD_POD, POD_STEEL)?;
-        world.set_gravity_m_s2(GRAVITY_M_S2)?;
+        let mut world = pod_steel_world(storage)?;
+        let steel = STEEL_MATERIAL;
         world.add_wall(WallSpec::fixed(
             WallGeometry::Plane {
                 point_m: [0.0; 3],
@@ -172,23 +166,61 @@ impl BenchBed {
             z_min_um: INSERT_Z_MIN_UM,
             z_max_um: INSERT_Z_MAX_UM,
         };
-        let request = InsertionRequest {
-            count: self.particles,
-            radius_um: SPHERE_RADIUS_UM,
-            material: pod,
-            velocity_m_s: INITIAL_VELOCITY_M_S,
-            max_attempts_per_sphere: MAX_ATTEMPTS_PER_SPHERE,
-        };
-        insert_random_spheres(
+        pour_pod_spheres(
             &mut world,
-            &mut SplitMix64::new(self.seed),
+            self.particles,
+            self.seed,
             &region,
-            &request,
+            INITIAL_VELOCITY_M_S,
         )?;
-        order_by_layers(&mut world, ORDER_LAYER_UM)?;
         world.set_timestep_s(dt_s)?;
         Ok(world)
     }
+}
+
+/// Most pod spheres random insertion places in a region whose sphere envelope (the centres'
+/// region grown by a radius) has `envelope_um3` µm³: [`MAX_FILL_FRACTION`] of it.
+pub(crate) fn fill_limit(envelope_um3: f64) -> u32 {
+    let r = SPHERE_RADIUS_UM as f64;
+    let sphere = 4.0 / 3.0 * PI * r * r * r;
+    libm::floor(MAX_FILL_FRACTION * envelope_um3 / sphere) as u32
+}
+
+/// A world over `storage` with the pod material ([`POD_MATERIAL`]) and the steel
+/// ([`STEEL_MATERIAL`]), their pod–pod and pod–steel pairs of DESIGN §8 and standard gravity:
+/// how the scenarios of pod spheres in steel rigs start.
+pub(crate) fn pod_steel_world<'a, S: Scalar>(
+    storage: Storage<'a, S>,
+) -> Result<World<'a, S>, ScenarioError> {
+    let mut world = World::new(storage)?;
+    let pod = world.add_material(POD)?;
+    let steel = world.add_material(STEEL)?;
+    debug_assert_eq!((pod, steel), (POD_MATERIAL, STEEL_MATERIAL));
+    BenchBed::set_pairs(&mut world, POD_POD, POD_STEEL)?;
+    world.set_gravity_m_s2(GRAVITY_M_S2)?;
+    Ok(world)
+}
+
+/// Insert `count` pod spheres of radius [`SPHERE_RADIUS_UM`] at random free places in
+/// `region`, drawn from `seed`, moving at `velocity_m_s`, and number them by layers: how the
+/// poured scenarios fill. The caller sets the time step.
+pub(crate) fn pour_pod_spheres<S: Scalar>(
+    world: &mut World<'_, S>,
+    count: u32,
+    seed: u64,
+    region: &InsertionRegion,
+    velocity_m_s: [f64; 3],
+) -> Result<(), ScenarioError> {
+    let request = InsertionRequest {
+        count,
+        radius_um: SPHERE_RADIUS_UM,
+        material: POD_MATERIAL,
+        velocity_m_s,
+        max_attempts_per_sphere: MAX_ATTEMPTS_PER_SPHERE,
+    };
+    insert_random_spheres(world, &mut SplitMix64::new(seed), region, &request)?;
+    order_by_layers(world, ORDER_LAYER_UM)?;
+    Ok(())
 }
 
 #[cfg(test)]

@@ -22,10 +22,8 @@
 //! assert!(bed_angle_deg(&world, 1.0).is_finite()); // the bed has not settled yet
 //! ```
 
-use super::insertion::InsertionRequest;
-use super::insertion::{insert_random_spheres, order_by_layers, InsertionRegion};
-use super::materials::{GRAVITY_M_S2, POD, POD_POD, POD_STEEL, STEEL};
-use super::{bench_bed, ScenarioError, SplitMix64};
+use super::insertion::InsertionRegion;
+use super::{bench_bed, ScenarioError};
 use crate::body::{Storage, StorageLengths};
 use crate::num::Scalar;
 use crate::wall::{WallGeometry, WallId, WallSpec};
@@ -67,8 +65,7 @@ impl Drum {
         let r = bench_bed::SPHERE_RADIUS_UM as f64;
         let width = 2.0 * (INSERT_HALF_WIDTH_UM as f64 + r);
         let length = 2.0 * (INSERT_HALF_LENGTH_UM as f64 + r);
-        let sphere = 4.0 / 3.0 * PI * r * r * r;
-        libm::floor(bench_bed::MAX_FILL_FRACTION * width * width * length / sphere) as u32
+        bench_bed::fill_limit(width * width * length)
     }
 
     /// Arena lengths this drum needs (one body and one sphere per particle).
@@ -94,12 +91,8 @@ impl Drum {
                 max,
             });
         }
-        let mut world = World::new(storage)?;
-        let pod = world.add_material(POD)?;
-        let steel = world.add_material(STEEL)?;
-        world.set_pair(pod, pod, POD_POD)?;
-        world.set_pair(pod, steel, POD_STEEL)?;
-        world.set_gravity_m_s2(GRAVITY_M_S2)?;
+        let mut world = bench_bed::pod_steel_world(storage)?;
+        let steel = bench_bed::STEEL_MATERIAL;
         let half = DRUM_LENGTH_M / 2.0;
         let shell = world.add_wall(WallSpec::fixed(
             WallGeometry::Cylinder {
@@ -137,20 +130,7 @@ impl Drum {
                 INSERT_HALF_WIDTH_UM,
             ],
         };
-        let request = InsertionRequest {
-            count: self.particles,
-            radius_um: bench_bed::SPHERE_RADIUS_UM,
-            material: pod,
-            velocity_m_s: [0.0; 3],
-            max_attempts_per_sphere: bench_bed::MAX_ATTEMPTS_PER_SPHERE,
-        };
-        insert_random_spheres(
-            &mut world,
-            &mut SplitMix64::new(self.seed),
-            &region,
-            &request,
-        )?;
-        order_by_layers(&mut world, bench_bed::ORDER_LAYER_UM)?;
+        bench_bed::pour_pod_spheres(&mut world, self.particles, self.seed, &region, [0.0; 3])?;
         world.set_timestep_s(bench_bed::TIMESTEP_S)?;
         Ok(world)
     }

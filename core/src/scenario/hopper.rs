@@ -21,10 +21,8 @@
 //! assert_eq!(discharged_mass_g(&world), 0.0);
 //! ```
 
-use super::insertion::{insert_random_spheres, order_by_layers, InsertionRegion};
-use super::insertion::{InsertionRequest, MICROMETRES_PER_M};
-use super::materials::{GRAVITY_M_S2, POD, POD_POD, POD_STEEL, STEEL};
-use super::{bench_bed, ScenarioError, SplitMix64};
+use super::insertion::{InsertionRegion, MICROMETRES_PER_M};
+use super::{bench_bed, ScenarioError};
 use crate::body::{Storage, StorageLengths};
 use crate::num::Scalar;
 use crate::wall::{WallGeometry, WallId, WallSpec};
@@ -78,9 +76,7 @@ impl Hopper {
         let r = bench_bed::SPHERE_RADIUS_UM as f64;
         let envelope_radius = INSERT_RADIUS_UM as f64 + r;
         let envelope_height = (INSERT_Z_MAX_UM - INSERT_Z_MIN_UM) as f64 + 2.0 * r;
-        let envelope = PI * envelope_radius * envelope_radius * envelope_height;
-        let sphere = 4.0 / 3.0 * PI * r * r * r;
-        libm::floor(bench_bed::MAX_FILL_FRACTION * envelope / sphere) as u32
+        bench_bed::fill_limit(PI * envelope_radius * envelope_radius * envelope_height)
     }
 
     /// Arena lengths this hopper needs (one body and one sphere per particle).
@@ -114,12 +110,8 @@ impl Hopper {
                 max_um: MAX_ORIFICE_DIAMETER_UM,
             });
         }
-        let mut world = World::new(storage)?;
-        let pod = world.add_material(POD)?;
-        let steel = world.add_material(STEEL)?;
-        world.set_pair(pod, pod, POD_POD)?;
-        world.set_pair(pod, steel, POD_STEEL)?;
-        world.set_gravity_m_s2(GRAVITY_M_S2)?;
+        let mut world = bench_bed::pod_steel_world(storage)?;
+        let steel = bench_bed::STEEL_MATERIAL;
         let up = [0.0, 0.0, 1.0];
         let plate = world.add_wall(WallSpec::fixed(
             WallGeometry::OrificePlate {
@@ -151,20 +143,13 @@ impl Hopper {
             z_min_um: INSERT_Z_MIN_UM,
             z_max_um: INSERT_Z_MAX_UM,
         };
-        let request = InsertionRequest {
-            count: self.particles,
-            radius_um: bench_bed::SPHERE_RADIUS_UM,
-            material: pod,
-            velocity_m_s: bench_bed::INITIAL_VELOCITY_M_S,
-            max_attempts_per_sphere: bench_bed::MAX_ATTEMPTS_PER_SPHERE,
-        };
-        insert_random_spheres(
+        bench_bed::pour_pod_spheres(
             &mut world,
-            &mut SplitMix64::new(self.seed),
+            self.particles,
+            self.seed,
             &region,
-            &request,
+            bench_bed::INITIAL_VELOCITY_M_S,
         )?;
-        order_by_layers(&mut world, bench_bed::ORDER_LAYER_UM)?;
         world.set_timestep_s(bench_bed::TIMESTEP_S)?;
         Ok(world)
     }

@@ -11,9 +11,9 @@
 //!   again;
 //! - an unknown parameter is refused before anything is simulated.
 
-use super::kind::RigKind;
+use super::kind::{RigKind, RigOptions, WorldKind};
 use crate::calibration::spec_hash::SpecHash;
-use crate::calibration::{ParameterValues, Responses, Rig, RunRequest};
+use crate::calibration::{Condition, ParameterValues, Responses, Rig, RunRequest};
 
 /// A parameter no rig has.
 pub const UNKNOWN_PARAMETER: &str = "conformance.no_such_parameter";
@@ -25,6 +25,26 @@ pub struct Checked {
     pub responses: Responses,
     /// Its specification's hash.
     pub spec_hash: SpecHash,
+}
+
+/// [`check`] of a rig that needs no study ([`WorldKind::Fixed`]): built from `kind` with
+/// default options, on replicate 0 of `values` at `condition`.
+pub fn check_fixed(
+    kind: &RigKind,
+    values: &ParameterValues,
+    condition: &Condition,
+) -> Result<Checked, String> {
+    if kind.world != WorldKind::Fixed {
+        return Err(format!("{}: the rig is built from a study", kind.name));
+    }
+    let rig = (kind.build)(&Default::default(), &RigOptions::default())
+        .map_err(|e| format!("{}: building the rig failed: {e}", kind.name))?;
+    let request = RunRequest {
+        values,
+        condition,
+        replicate: 0,
+    };
+    check(kind, rig.as_ref(), &request)
 }
 
 /// Checks `rig`, built from catalogue entry `kind`, on `request` (module notes); the first

@@ -20,7 +20,8 @@ use arachis_core::scenario::drum::{bed_angle_deg, Drum};
 use serde_json::json;
 
 use super::kind::{ConditionKey, Quantity, RigKind, WorldKind};
-use super::sphere_bulk::{Values, PARAMETERS};
+pub use super::sphere_bulk::PARTICLES;
+use super::sphere_bulk::{Declared, Values, PARAMETERS};
 use crate::arena::OwnedStorage;
 use crate::calibration::{Responses, Rig, RigError, RunRequest};
 use crate::limits::Limits;
@@ -31,8 +32,6 @@ pub const NAME: &str = "drum";
 pub const DYNAMIC_ANGLE: &str = "dynamic_angle";
 /// The drum-speed condition, rpm.
 pub const ROTATION_SPEED: &str = "rotation_speed_rpm";
-/// The particle-count condition (a count of spheres).
-pub const PARTICLES: &str = "particles";
 /// Spheres in the drum unless a measurement says otherwise: about a quarter of its volume.
 pub const DEFAULT_PARTICLES: u32 = 250;
 /// Seed of replicate 0's insertion.
@@ -76,6 +75,16 @@ pub const KIND: RigKind = RigKind {
     build: |_, _| Ok(Box::new(DrumRig)),
 };
 
+/// What the rig declares of its requests.
+const DECLARED: Declared = Declared {
+    kind: &KIND,
+    condition: ROTATION_SPEED,
+    condition_about: "the drum's speed, rpm",
+    default_particles: DEFAULT_PARTICLES,
+    max_particles: Drum::max_particles,
+    base_seed: BASE_SEED,
+};
+
 /// One run's set-up.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Setup {
@@ -92,53 +101,16 @@ impl DrumRig {
     /// The set-up of `request`; an unknown parameter or condition, or a value outside its
     /// limits, is refused.
     fn setup(request: &RunRequest<'_>) -> Result<Setup, RigError> {
-        let values = Values::of(NAME, request.values)?;
-        let mut particles = f64::from(DEFAULT_PARTICLES);
-        let mut speed_rpm = None;
-        for (key, &value) in request.condition {
-            let condition = KIND.condition(key).ok_or_else(|| {
-                RigError(format!(
-                    "the {NAME} rig takes the conditions {ROTATION_SPEED} and {PARTICLES}, not \
-                     '{key}'"
-                ))
-            })?;
-            condition
-                .check(value)
-                .map_err(|why| RigError(format!("{key}: {why}")))?;
-            match key.as_str() {
-                PARTICLES => particles = value,
-                _ => speed_rpm = Some(value),
-            }
-        }
-        let speed_rpm = speed_rpm.ok_or_else(|| {
-            RigError(format!(
-                "a {NAME} measurement must give {ROTATION_SPEED} (the drum's speed, rpm)"
-            ))
-        })?;
-        if particles.fract() != 0.0 || particles > f64::from(Drum::max_particles()) {
-            return Err(RigError(format!(
-                "{PARTICLES} = {particles} must be a whole number of spheres, at most {}",
-                Drum::max_particles()
-            )));
-        }
+        let read = DECLARED.read(request)?;
         Ok(Setup {
             drum: Drum {
-                particles: particles as u32,
-                seed: BASE_SEED.wrapping_add(u64::from(request.replicate)),
+                particles: read.particles,
+                seed: read.seed,
             },
-            speed_rpm,
-            values,
+            speed_rpm: read.condition,
+            values: read.values,
         })
     }
-}
-
-fn core_error(e: impl std::fmt::Display) -> RigError {
-    RigError(format!("the drum failed: {e}"))
-}
-
-/// Steps of `seconds` at the bench bed's time step.
-fn steps(seconds: f64) -> u64 {
-    (seconds / TIMESTEP_S).round() as u64
 }
 
 impl Rig for DrumRig {
@@ -172,18 +144,18 @@ impl Rig for DrumRig {
         let s = Self::setup(request)?;
         let mut arenas =
             OwnedStorage::<Fx>::new(s.values.storage_lengths(s.drum.storage_lengths()));
-        let mut world = s.drum.build(arenas.storage()).map_err(core_error)?;
-        s.values.apply(&mut world).map_err(core_error)?;
+        let mut world = s
+            .drum
+            .build(arenas.storage())
+            .map_err(|e| DECLARED.failed(e))?;
+        s.values.apply(&mut world).map_err(|e| DECLARED.failed(e))?;
         let omega = s.speed_rpm * RAD_S_PER_RPM;
-        let run = |world: &mut World<'_, Fx>, seconds: f64| {
-            crate::stepping::run(world, steps(seconds)).map_err(core_error)
-        };
-        run(&mut world, SETTLE_TIME_S)?;
-        Drum::spin(&mut world, omega).map_err(core_error)?;
-        run(&mut world, SPIN_UP_TURN_RAD / omega)?;
+        DECLARED.run_for(&mut world, SETTLE_TIME_S)?;
+        Drum::spin(&mut world, omega).map_err(|e| DECLARED.failed(e))?;
+        DECLARED.run_for(&mut world, SPIN_UP_TURN_RAD / omega)?;
         let mut sum = 0.0;
         for _ in 0..SAMPLES {
-            run(&mut world, MEASURE_TURN_RAD / omega / f64::from(SAMPLES))?;
+            DECLARED.run_for(&mut world, MEASURE_TURN_RAD / omega / f64::from(SAMPLES))?;
             sum += bed_angle_deg(&world, omega);
         }
         Ok(Responses::from([(

@@ -22,7 +22,8 @@ use arachis_core::scenario::hopper::{
 use serde_json::json;
 
 use super::kind::{ConditionKey, Quantity, RigKind, WorldKind};
-use super::sphere_bulk::{Values, PARAMETERS};
+pub use super::sphere_bulk::PARTICLES;
+use super::sphere_bulk::{Declared, Values, PARAMETERS};
 use crate::arena::OwnedStorage;
 use crate::calibration::{Responses, Rig, RigError, RunRequest};
 use crate::limits::Limits;
@@ -33,8 +34,6 @@ pub const NAME: &str = "hopper";
 pub const MASS_FLOW_RATE: &str = "mass_flow_rate";
 /// The orifice-diameter condition, mm.
 pub const ORIFICE_DIAMETER: &str = "orifice_diameter_mm";
-/// The particle-count condition (a count of spheres).
-pub const PARTICLES: &str = "particles";
 /// Spheres in the silo unless a measurement says otherwise: a fill about 2.5 orifice
 /// diameters high at the largest orifice searched, so the flow is steady over the window.
 pub const DEFAULT_PARTICLES: u32 = 1200;
@@ -76,6 +75,16 @@ pub const KIND: RigKind = RigKind {
     build: |_, _| Ok(Box::new(HopperRig)),
 };
 
+/// What the rig declares of its requests.
+const DECLARED: Declared = Declared {
+    kind: &KIND,
+    condition: ORIFICE_DIAMETER,
+    condition_about: "the orifice's diameter, mm",
+    default_particles: DEFAULT_PARTICLES,
+    max_particles: Hopper::max_particles,
+    base_seed: BASE_SEED,
+};
+
 /// One run's set-up.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Setup {
@@ -91,53 +100,16 @@ impl HopperRig {
     /// The set-up of `request`; an unknown parameter or condition, or a value outside its
     /// limits, is refused.
     fn setup(request: &RunRequest<'_>) -> Result<Setup, RigError> {
-        let values = Values::of(NAME, request.values)?;
-        let mut particles = f64::from(DEFAULT_PARTICLES);
-        let mut diameter_mm = None;
-        for (key, &value) in request.condition {
-            let condition = KIND.condition(key).ok_or_else(|| {
-                RigError(format!(
-                    "the {NAME} rig takes the conditions {ORIFICE_DIAMETER} and {PARTICLES}, \
-                     not '{key}'"
-                ))
-            })?;
-            condition
-                .check(value)
-                .map_err(|why| RigError(format!("{key}: {why}")))?;
-            match key.as_str() {
-                PARTICLES => particles = value,
-                _ => diameter_mm = Some(value),
-            }
-        }
-        let diameter_mm = diameter_mm.ok_or_else(|| {
-            RigError(format!(
-                "a {NAME} measurement must give {ORIFICE_DIAMETER} (the orifice's diameter, mm)"
-            ))
-        })?;
-        if particles.fract() != 0.0 || particles > f64::from(Hopper::max_particles()) {
-            return Err(RigError(format!(
-                "{PARTICLES} = {particles} must be a whole number of spheres, at most {}",
-                Hopper::max_particles()
-            )));
-        }
+        let read = DECLARED.read(request)?;
         Ok(Setup {
             hopper: Hopper {
-                particles: particles as u32,
-                seed: BASE_SEED.wrapping_add(u64::from(request.replicate)),
-                orifice_diameter_um: (diameter_mm * UM_PER_MM).round() as i64,
+                particles: read.particles,
+                seed: read.seed,
+                orifice_diameter_um: (read.condition * UM_PER_MM).round() as i64,
             },
-            values,
+            values: read.values,
         })
     }
-}
-
-fn core_error(e: impl std::fmt::Display) -> RigError {
-    RigError(format!("the hopper failed: {e}"))
-}
-
-/// Steps of `seconds` at the bench bed's time step.
-fn steps(seconds: f64) -> u64 {
-    (seconds / TIMESTEP_S).round() as u64
 }
 
 impl Rig for HopperRig {
@@ -170,18 +142,18 @@ impl Rig for HopperRig {
         let s = Self::setup(request)?;
         let mut arenas =
             OwnedStorage::<Fx>::new(s.values.storage_lengths(s.hopper.storage_lengths()));
-        let mut world = s.hopper.build(arenas.storage()).map_err(core_error)?;
-        s.values.apply(&mut world).map_err(core_error)?;
-        let run = |world: &mut World<'_, Fx>, seconds: f64| {
-            crate::stepping::run(world, steps(seconds)).map_err(core_error)
-        };
-        run(&mut world, SETTLE_TIME_S)?;
-        Hopper::open(&mut world).map_err(core_error)?;
-        run(&mut world, SHUTTER_TRAVEL_S)?;
-        Hopper::catch(&mut world).map_err(core_error)?;
-        run(&mut world, WINDOW_START_S - SHUTTER_TRAVEL_S)?;
+        let mut world = s
+            .hopper
+            .build(arenas.storage())
+            .map_err(|e| DECLARED.failed(e))?;
+        s.values.apply(&mut world).map_err(|e| DECLARED.failed(e))?;
+        DECLARED.run_for(&mut world, SETTLE_TIME_S)?;
+        Hopper::open(&mut world).map_err(|e| DECLARED.failed(e))?;
+        DECLARED.run_for(&mut world, SHUTTER_TRAVEL_S)?;
+        Hopper::catch(&mut world).map_err(|e| DECLARED.failed(e))?;
+        DECLARED.run_for(&mut world, WINDOW_START_S - SHUTTER_TRAVEL_S)?;
         let before = discharged_mass_g(&world);
-        run(&mut world, WINDOW_END_S - WINDOW_START_S)?;
+        DECLARED.run_for(&mut world, WINDOW_END_S - WINDOW_START_S)?;
         let after = discharged_mass_g(&world);
         Ok(Responses::from([(
             MASS_FLOW_RATE.to_owned(),

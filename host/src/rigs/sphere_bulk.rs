@@ -3,7 +3,8 @@
 //! (`pod-pod.static_friction`, …, the same names as in every rig) and three optional pod–pod
 //! effects, off unless set, with the pod world's names and finite-difference steps
 //! (`pod-pod.cohesion_j_m3`, SJKR; `pod-pod.epsd_rolling_friction`;
-//! `pod-pod.viscoelastic_time_s`) — and how a run's values become the core's pairs.
+//! `pod-pod.viscoelastic_time_s`) — how a run's values become the core's pairs, and how a
+//! request names its spheres and its one condition ([`Declared`]).
 //!
 //! ```
 //! use arachis::calibration::ParameterValues;
@@ -17,13 +18,17 @@
 use arachis_core::body::StorageLengths;
 use arachis_core::effects::EffectSpec;
 use arachis_core::prelude::*;
-use arachis_core::scenario::bench_bed::{BenchBed, POD_MATERIAL};
+use arachis_core::scenario::bench_bed::{BenchBed, POD_MATERIAL, TIMESTEP_S};
 use serde_json::json;
 
 use super::bench_bed::{self, PairCoefficient};
+use super::kind::RigKind;
 use super::parameter::{diagnosis_parameters_with_effects, Parameter, RigParameter};
 use super::pod_world::parameters::{ParameterSpec, EFFECTS as POD_EFFECTS};
-use crate::calibration::{ParameterValues, RigError};
+use crate::calibration::{ParameterValues, RigError, RunRequest};
+
+/// The particle-count condition of every bulk rig (a count of spheres).
+pub const PARTICLES: &str = "particles";
 
 /// What a parameter of a sphere-bulk rig sets.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -196,5 +201,93 @@ impl Values {
                 self.effects.viscoelastic_time_s
             ]);
         }
+    }
+}
+
+/// What a bulk rig declares of its requests: its catalogue entry, its one condition (whose
+/// key a measurement must give), and its spheres.
+#[derive(Debug, Clone, Copy)]
+pub struct Declared {
+    /// The rig in the catalogue (name and conditions).
+    pub kind: &'static RigKind,
+    /// The key of the rig's own condition.
+    pub condition: &'static str,
+    /// What that condition is, with its unit, for the message when it is missing.
+    pub condition_about: &'static str,
+    /// Spheres unless a request's [`PARTICLES`] says otherwise.
+    pub default_particles: u32,
+    /// Most spheres the rig's scenario can insert.
+    pub max_particles: fn() -> u32,
+    /// Seed of replicate 0's insertion; replicate r inserts from this + r.
+    pub base_seed: u64,
+}
+
+/// A bulk rig's request, read.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Read {
+    /// The parameter values.
+    pub values: Values,
+    /// Spheres to insert.
+    pub particles: u32,
+    /// The value of the rig's own condition.
+    pub condition: f64,
+    /// The insertion seed of the replicate.
+    pub seed: u64,
+}
+
+impl Declared {
+    /// `request` read: values as [`Values::of`], conditions by the catalogue entry; an
+    /// unknown condition, a value outside its limits, a missing own condition or a particle
+    /// count that is not a whole number the scenario can insert is refused.
+    pub fn read(&self, request: &RunRequest<'_>) -> Result<Read, RigError> {
+        let name = self.kind.name;
+        let values = Values::of(name, request.values)?;
+        let mut particles = f64::from(self.default_particles);
+        let mut condition = None;
+        for (key, &value) in request.condition {
+            let known = self.kind.condition(key).ok_or_else(|| {
+                RigError(format!(
+                    "the {name} rig takes the conditions {} and {PARTICLES}, not '{key}'",
+                    self.condition
+                ))
+            })?;
+            known
+                .check(value)
+                .map_err(|why| RigError(format!("{key}: {why}")))?;
+            match key.as_str() {
+                PARTICLES => particles = value,
+                _ => condition = Some(value),
+            }
+        }
+        let condition = condition.ok_or_else(|| {
+            RigError(format!(
+                "a {name} measurement must give {} ({})",
+                self.condition, self.condition_about
+            ))
+        })?;
+        let max = (self.max_particles)();
+        if particles.fract() != 0.0 || particles > f64::from(max) {
+            return Err(RigError(format!(
+                "{PARTICLES} = {particles} must be a whole number of spheres, at most {max}"
+            )));
+        }
+        Ok(Read {
+            values,
+            particles: particles as u32,
+            condition,
+            seed: self.base_seed.wrapping_add(u64::from(request.replicate)),
+        })
+    }
+
+    /// A core failure of this rig, in words.
+    pub fn failed(&self, e: impl std::fmt::Display) -> RigError {
+        RigError(format!("the {} failed: {e}", self.kind.name))
+    }
+
+    /// Step `world` through `seconds` (rounded to whole steps of the bench bed's time step)
+    /// on the host's threads.
+    pub fn run_for(&self, world: &mut World<'_, Fx>, seconds: f64) -> Result<(), RigError> {
+        let steps = (seconds / TIMESTEP_S).round() as u64;
+        crate::stepping::run(world, steps).map_err(|e| self.failed(e))
     }
 }
