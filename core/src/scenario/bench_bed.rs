@@ -133,16 +133,7 @@ impl BenchBed {
         storage: Storage<'a, S>,
         dt_s: f64,
     ) -> Result<World<'a, S>, ScenarioError> {
-        if self.particles == 0 {
-            return Err(ScenarioError::NoParticles);
-        }
-        let max = Self::max_particles();
-        if self.particles > max {
-            return Err(ScenarioError::TooManyParticles {
-                requested: self.particles,
-                max,
-            });
-        }
+        check_count(self.particles, Self::max_particles())?;
         let mut world = pod_steel_world(storage)?;
         let steel = STEEL_MATERIAL;
         world.add_wall(WallSpec::fixed(
@@ -176,6 +167,20 @@ impl BenchBed {
         world.set_timestep_s(dt_s)?;
         Ok(world)
     }
+}
+
+/// Whether `particles` spheres can be inserted where at most `max` fit: at least one.
+pub(crate) fn check_count(particles: u32, max: u32) -> Result<(), ScenarioError> {
+    if particles == 0 {
+        return Err(ScenarioError::NoParticles);
+    }
+    if particles > max {
+        return Err(ScenarioError::TooManyParticles {
+            requested: particles,
+            max,
+        });
+    }
+    Ok(())
 }
 
 /// Most pod spheres random insertion places in a region whose sphere envelope (the centres'

@@ -81,16 +81,7 @@ impl Drum {
         &self,
         storage: Storage<'a, S>,
     ) -> Result<World<'a, S>, ScenarioError> {
-        if self.particles == 0 {
-            return Err(ScenarioError::NoParticles);
-        }
-        let max = Self::max_particles();
-        if self.particles > max {
-            return Err(ScenarioError::TooManyParticles {
-                requested: self.particles,
-                max,
-            });
-        }
+        bench_bed::check_count(self.particles, Self::max_particles())?;
         let mut world = bench_bed::pod_steel_world(storage)?;
         let steel = bench_bed::STEEL_MATERIAL;
         let half = DRUM_LENGTH_M / 2.0;

@@ -92,16 +92,7 @@ impl Hopper {
         &self,
         storage: Storage<'a, S>,
     ) -> Result<World<'a, S>, ScenarioError> {
-        if self.particles == 0 {
-            return Err(ScenarioError::NoParticles);
-        }
-        let max = Self::max_particles();
-        if self.particles > max {
-            return Err(ScenarioError::TooManyParticles {
-                requested: self.particles,
-                max,
-            });
-        }
+        bench_bed::check_count(self.particles, Self::max_particles())?;
         if !(MIN_ORIFICE_DIAMETER_UM..=MAX_ORIFICE_DIAMETER_UM).contains(&self.orifice_diameter_um)
         {
             return Err(ScenarioError::OrificeOutOfRange {
