@@ -1,7 +1,8 @@
 //! Walls: infinite planes ([`Plane`]), finite or infinite cylinders with particles inside
 //! ([`Cylinder`]), axis-aligned boxes with particles inside ([`AaBox`]) and flat plates with a
-//! circular hole ([`OrificePlate`], a hopper's bottom). Each wall moves
-//! at a prescribed velocity (mm/ms = m/s), e.g. the repose test lifts a cylinder at 0.05 m/s.
+//! circular hole ([`OrificePlate`], a hopper's bottom). Each wall moves at a prescribed
+//! velocity (mm/ms = m/s), e.g. the repose test lifts a cylinder at 0.05 m/s, and may spin
+//! about its own axis of symmetry ([`Wall::spin`], a rotating drum).
 //!
 //! Seam for triangle meshes: [`WallShape`] is `#[non_exhaustive]`; a mesh wall becomes a new
 //! variant whose contact routine reports (normal, overlap) per face ([`WallShape::contact`])
