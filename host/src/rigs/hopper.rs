@@ -47,7 +47,7 @@ pub const SETTLE_TIME_S: f64 = 0.30;
 pub const WINDOW_START_S: f64 = 0.10;
 /// End of the measuring window after opening, s.
 pub const WINDOW_END_S: f64 = 0.30;
-/// Millimetres per metre and micrometres per millimetre.
+/// Micrometres per millimetre (the scenario takes the orifice in µm).
 const UM_PER_MM: f64 = 1.0e3;
 
 /// This rig in the catalogue.
