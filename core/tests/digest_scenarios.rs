@@ -18,6 +18,7 @@
 mod common;
 use arachis_core::bond::{Bond, BondBreak, BondStorage};
 use arachis_core::prelude::*;
+use arachis_core::scenario::bulk_density::{slab_bulk_density_kg_m3, BulkDensity};
 use arachis_core::scenario::drum::{bed_angle_deg, Drum};
 use arachis_core::scenario::hopper::{discharged_mass_g, CATCH_DEPTH_M, SHUTTER};
 use arachis_core::scenario::{BenchBed, ClumpSlide, Hopper, MovingWallPile, PullOff};
@@ -358,6 +359,32 @@ fn drum_matches_golden_digest() {
     assert!((rise - turn).abs() < 1.0);
 }
 
+/// Bulk-density pour: spheres, seed and drop height (µm) of the golden run.
+const POURED: BulkDensity = BulkDensity {
+    particles: 100,
+    seed: 5,
+    drop_height_um: 150_000,
+};
+/// Bulk-density pour: steps (0.2 s: the lowest spheres have landed, the highest still fall).
+const POURED_STEPS: u64 = 10_000;
+
+#[test]
+fn bulk_density_pour_matches_golden_digest() {
+    let mut arenas = Owned::<Fx>::with_lengths(POURED.storage_lengths());
+    let mut world = POURED.build(arenas.storage()).unwrap();
+    world.run(POURED_STEPS).unwrap();
+    check_golden(
+        "bulk_density",
+        "100 pod spheres (R 4 mm) falling from a column 150–450 mm above the floor of a steel\n\
+         cylinder of radius 30 mm, 0.2 s (core/src/scenario/bulk_density.rs).",
+        &world,
+    );
+    // The run exercises impacts on the floor and the landed spheres: some lie in the slab.
+    let density = slab_bulk_density_kg_m3(&world);
+    println!("bulk density pour: {density:.1} kg/m³ in the slab so far");
+    assert!(density > 0.0, "nothing landed in the measuring slab");
+}
+
 /// Thread counts the goldens must not depend on.
 const THREAD_COUNTS: [usize; 5] = [1, 2, 3, 4, 7];
 
@@ -424,6 +451,15 @@ fn golden_digests_are_identical_for_any_thread_count() {
             world.digest(),
             golden("hopper").digest,
             "hopper, {threads} threads"
+        );
+
+        let mut arenas = Owned::<Fx>::with_lengths(POURED.storage_lengths());
+        let mut world = POURED.build(arenas.storage()).unwrap();
+        run_threaded(&mut world, POURED_STEPS, threads);
+        assert_eq!(
+            world.digest(),
+            golden("bulk_density").digest,
+            "bulk density, {threads} threads"
         );
 
         let scenario = PullOff::default();

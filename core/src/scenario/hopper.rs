@@ -95,8 +95,9 @@ impl Hopper {
         bench_bed::check_count(self.particles, Self::max_particles())?;
         if !(MIN_ORIFICE_DIAMETER_UM..=MAX_ORIFICE_DIAMETER_UM).contains(&self.orifice_diameter_um)
         {
-            return Err(ScenarioError::OrificeOutOfRange {
-                diameter_um: self.orifice_diameter_um,
+            return Err(ScenarioError::LengthOutOfRange {
+                what: "orifice diameter",
+                value_um: self.orifice_diameter_um,
                 min_um: MIN_ORIFICE_DIAMETER_UM,
                 max_um: MAX_ORIFICE_DIAMETER_UM,
             });
@@ -189,7 +190,7 @@ mod tests {
             let mut arenas = OwnedStorage::<Fx>::new(h.storage_lengths());
             assert!(matches!(
                 h.build(arenas.storage()),
-                Err(ScenarioError::OrificeOutOfRange { .. })
+                Err(ScenarioError::LengthOutOfRange { .. })
             ));
         }
     }

@@ -11,6 +11,7 @@
 //! | scenario | file | what it exercises |
 //! |---|---|---|
 //! | [`BenchBed`] | `bench_bed.rs` | DESIGN §8 pour into a steel cylinder: many sphere–sphere and sphere–wall contacts |
+//! | [`BulkDensity`] | `bulk_density.rs` | pod spheres falling from a drop height into a steel measuring cylinder: impacts on a growing bed |
 //! | [`Hopper`] | `hopper.rs` | a silo of pod spheres discharging through an orifice plate onto a catch floor: a wall with a hole, a wall set moving and stopped mid-run |
 //! | [`Drum`] | `drum.rs` | pod spheres in a drum spinning about a horizontal axis, end plates spinning with it: spinning walls |
 //! | [`ClumpSlide`] | `clump_slide.rs` | two- and three-sphere clumps sliding down a steel incline into each other and a stop wall |
@@ -31,6 +32,7 @@
 //! ```
 
 pub mod bench_bed;
+pub mod bulk_density;
 pub mod clump_slide;
 pub mod drum;
 pub mod hopper;
@@ -43,6 +45,7 @@ pub mod prng;
 pub mod pull_off;
 
 pub use bench_bed::BenchBed;
+pub use bulk_density::BulkDensity;
 pub use clump_slide::ClumpSlide;
 pub use drum::Drum;
 pub use hopper::Hopper;
@@ -84,13 +87,16 @@ pub enum ScenarioError {
     /// Ordering by layers ([`insertion::order_by_layers`]) needs a world of single spheres,
     /// without bonds, that has not stepped yet, and a positive layer thickness.
     NotReorderable,
-    /// An orifice diameter outside what the hopper can hold ([`hopper`]).
-    OrificeOutOfRange {
-        /// The diameter asked for, µm.
-        diameter_um: i64,
-        /// Smallest diameter, µm.
+    /// A length of a scenario's geometry outside what the scenario can hold (the hopper's
+    /// orifice diameter, the bulk-density pour's drop height).
+    LengthOutOfRange {
+        /// What the length is, e.g. "orifice diameter".
+        what: &'static str,
+        /// The length asked for, µm.
+        value_um: i64,
+        /// Smallest accepted, µm.
         min_um: i64,
-        /// Largest diameter, µm.
+        /// Largest accepted, µm.
         max_um: i64,
     },
 }
@@ -139,13 +145,14 @@ impl fmt::Display for ScenarioError {
                 "spheres can only be ordered by layers in a world of single spheres, \
                  without bonds, that has not stepped yet, and with a positive layer thickness"
             ),
-            ScenarioError::OrificeOutOfRange {
-                diameter_um,
+            ScenarioError::LengthOutOfRange {
+                what,
+                value_um,
                 min_um,
                 max_um,
             } => write!(
                 f,
-                "an orifice of {diameter_um} µm is outside the hopper's range {min_um}–{max_um} µm"
+                "a {what} of {value_um} µm is outside the scenario's range {min_um}–{max_um} µm"
             ),
         }
     }

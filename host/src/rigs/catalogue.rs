@@ -18,6 +18,7 @@ pub const RIGS: &[&RigKind] = &[
     &super::bench_bed::KIND,
     &super::hopper::KIND,
     &super::drum::KIND,
+    &super::bulk_density::KIND,
     &super::rebound::KIND,
     &super::press::KIND,
     &super::fall::KIND,

@@ -81,6 +81,7 @@ const DECLARED: Declared = Declared {
     condition: ROTATION_SPEED,
     condition_about: "the drum's speed, rpm",
     default_particles: DEFAULT_PARTICLES,
+    min_particles: || 1,
     max_particles: Drum::max_particles,
     base_seed: BASE_SEED,
 };

@@ -81,6 +81,7 @@ const DECLARED: Declared = Declared {
     condition: ORIFICE_DIAMETER,
     condition_about: "the orifice's diameter, mm",
     default_particles: DEFAULT_PARTICLES,
+    min_particles: || 1,
     max_particles: Hopper::max_particles,
     base_seed: BASE_SEED,
 };

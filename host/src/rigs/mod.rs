@@ -12,6 +12,7 @@
 //! | `harvest` | [`harvest`] | loss rate through a picking drum (seed 001 §3.3) |
 //! | `bench_bed` | [`bench_bed`] | bed height of pod spheres poured into a cylinder (DESIGN §8) |
 //! | `hopper` | [`hopper`] | mass flow rate of pod spheres out of a silo through an orifice |
+//! | `bulk_density` | [`bulk_density`] | bulk density of pod spheres poured from a drop height |
 //! | `drum` | [`drum`] | dynamic angle of repose of pod spheres in a rotating drum |
 //! | `rebound`, `press`, `fall`, `unload`, `roll` | [`rebound`], [`press`], [`fall`], [`unload`], [`roll`] | one pod sphere: restitution, overlap, fall time, rolling speed |
 //!
@@ -21,6 +22,7 @@
 //! parameters are; [`conformance`] is the test every rig must pass.
 
 pub mod bench_bed;
+pub mod bulk_density;
 pub mod catalogue;
 pub mod compression;
 pub mod conformance;

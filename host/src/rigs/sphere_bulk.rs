@@ -1,5 +1,5 @@
-//! What the rigs of pod spheres in bulk share (the [`super::hopper`] and the
-//! [`super::drum`]): their parameters — the bench bed's six pair coefficients
+//! What the rigs of pod spheres in bulk share (the [`super::hopper`], the [`super::drum`]
+//! and the [`super::bulk_density`] pour): their parameters — the bench bed's six pair coefficients
 //! (`pod-pod.static_friction`, …, the same names as in every rig) and three optional pod–pod
 //! effects, off unless set, with the pod world's names and finite-difference steps
 //! (`pod-pod.cohesion_j_m3`, SJKR; `pod-pod.epsd_rolling_friction`;
@@ -216,6 +216,8 @@ pub struct Declared {
     pub condition_about: &'static str,
     /// Spheres unless a request's [`PARTICLES`] says otherwise.
     pub default_particles: u32,
+    /// Fewest spheres the rig can measure with.
+    pub min_particles: fn() -> u32,
     /// Most spheres the rig's scenario can insert.
     pub max_particles: fn() -> u32,
     /// Seed of replicate 0's insertion; replicate r inserts from this + r.
@@ -265,10 +267,10 @@ impl Declared {
                 self.condition, self.condition_about
             ))
         })?;
-        let max = (self.max_particles)();
-        if particles.fract() != 0.0 || particles > f64::from(max) {
+        let (min, max) = ((self.min_particles)(), (self.max_particles)());
+        if particles.fract() != 0.0 || !(f64::from(min)..=f64::from(max)).contains(&particles) {
             return Err(RigError(format!(
-                "{PARTICLES} = {particles} must be a whole number of spheres, at most {max}"
+                "{PARTICLES} = {particles} must be a whole number of spheres, {min} to {max}"
             )));
         }
         Ok(Read {
