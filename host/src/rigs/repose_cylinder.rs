@@ -64,9 +64,10 @@ pub const KIND: RigKind = RigKind {
         label: "repose angle, deg",
     }],
     conditions: &[
+        ConditionKey::new(LIFT_SPEED, "cylinder lifting speed, m/s", Limits::Positive),
         ConditionKey::new(
-            "lift_speed_m_s",
-            "cylinder lifting speed, m/s",
+            CYLINDER_DIAMETER,
+            "cylinder diameter at full scale, mm",
             Limits::Positive,
         ),
         MOISTURE,
@@ -76,6 +77,8 @@ pub const KIND: RigKind = RigKind {
 };
 
 const EXPERIMENT: Experiment = Experiment::Repose;
+
+pub use super::pod_world::settings::{CYLINDER_DIAMETER, LIFT_SPEED};
 
 /// Side views of the pile, spread evenly over 180°.
 pub const VIEW_COUNT: usize = 12;

@@ -14,7 +14,7 @@ use serde::Serialize;
 use super::experiment::Experiment;
 use super::parameters::{effect_for, for_property, lookup_any, Owner};
 use super::sections::{Particles, ShapeMix, SizeClass};
-use super::settings::{Mode, Simulation};
+use super::settings::{Mode, Simulation, CYLINDER_DIAMETER, LIFT_SPEED};
 use super::PodWorld;
 use crate::calibration::spec_hash::{canonical_json, fnv1a_64, SpecHash};
 
@@ -244,8 +244,11 @@ impl PodWorld<'_> {
             }
         }
         let mut simulation = self.simulation.clone();
-        if let Some(speed) = condition.get("lift_speed_m_s") {
+        if let Some(speed) = condition.get(LIFT_SPEED) {
             simulation.repose.lift_speed_m_s = *speed;
+        }
+        if let Some(diameter) = condition.get(CYLINDER_DIAMETER) {
+            simulation.repose.cylinder_diameter_mm = *diameter;
         }
         let (pods, spheres) = match self.particles {
             Particles::Pods(pods) => (

@@ -34,6 +34,15 @@ pub struct Simulation {
     pub repose: ReposeSettings,
 }
 
+/// The repose rig's lifting-speed condition, m/s: a measurement's value replaces
+/// [`ReposeSettings::lift_speed_m_s`].
+pub const LIFT_SPEED: &str = "lift_speed_m_s";
+/// The repose rig's cylinder-diameter condition, mm: a measurement's value replaces
+/// [`ReposeSettings::cylinder_diameter_mm`], so it is the full-scale diameter and a mode with
+/// fewer pods scales it as it scales the study's own. With the pod count fixed, the
+/// diameter sets the height of the column that collapses when the cylinder is lifted.
+pub const CYLINDER_DIAMETER: &str = "cylinder_diameter_mm";
+
 /// `[plan.simulation.repose]`: the cylinder-lifting test (seed 000 §2.7).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
