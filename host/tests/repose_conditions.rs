@@ -36,10 +36,12 @@ fn inputs(condition: &[(&str, f64)]) -> Result<RunInputs, String> {
 }
 
 #[test]
-fn the_catalogue_offers_both_conditions() {
-    for key in [LIFT_SPEED, CYLINDER_DIAMETER] {
-        assert!(KIND.condition(key).is_some(), "{key}");
-    }
+fn the_catalogue_offers_both_conditions_within_ranges() {
+    let lift = KIND.condition(LIFT_SPEED).unwrap();
+    let diameter = KIND.condition(CYLINDER_DIAMETER).unwrap();
+    // Seed 000's own values are accepted, a lift of 2 m/s and a 5 m cylinder are not.
+    assert!(lift.check(0.05).is_ok() && diameter.check(200.0).is_ok());
+    assert!(lift.check(2.0).is_err() && diameter.check(5000.0).is_err());
 }
 
 #[test]

@@ -64,12 +64,14 @@ pub const KIND: RigKind = RigKind {
         label: "repose angle, deg",
     }],
     conditions: &[
-        ConditionKey::new(LIFT_SPEED, "cylinder lifting speed, m/s", Limits::Positive),
+        ConditionKey::new(LIFT_SPEED, "cylinder lifting speed, m/s", Limits::Positive)
+            .within(LIFT_SPEED_RANGE_M_S, LIFT_SPEED_SEARCH_M_S),
         ConditionKey::new(
             CYLINDER_DIAMETER,
             "cylinder diameter at full scale, mm",
             Limits::Positive,
-        ),
+        )
+        .within(DIAMETER_RANGE_MM, DIAMETER_SEARCH_MM),
         MOISTURE,
     ],
     parameters: &super::pod_bench::PARAMETERS,
@@ -79,6 +81,18 @@ pub const KIND: RigKind = RigKind {
 const EXPERIMENT: Experiment = Experiment::Repose;
 
 pub use super::pod_world::settings::{CYLINDER_DIAMETER, LIFT_SPEED};
+/// Lifting speeds the rig accepts, m/s: from a creep at which a pile takes minutes to a
+/// jerk of 1 m/s.
+pub const LIFT_SPEED_RANGE_M_S: (f64, f64) = (0.001, 1.0);
+/// Lifting speeds a diagnosis may propose, m/s: those of stacking-angle benches (seed 000
+/// lifts at 0.05 m/s).
+pub const LIFT_SPEED_SEARCH_M_S: (f64, f64) = (0.01, 0.1);
+/// Cylinder diameters the rig accepts, mm at full scale (the layout refuses one narrower
+/// than a pod).
+pub const DIAMETER_RANGE_MM: (f64, f64) = (10.0, 1000.0);
+/// Cylinder diameters a diagnosis may propose, mm at full scale: half to one and a half
+/// times seed 000's assumed 200 mm.
+pub const DIAMETER_SEARCH_MM: (f64, f64) = (100.0, 300.0);
 
 /// Side views of the pile, spread evenly over 180°.
 pub const VIEW_COUNT: usize = 12;
