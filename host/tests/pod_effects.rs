@@ -127,3 +127,45 @@ fn an_effect_changes_the_simulated_pile() {
     let cohesive = run(&["--set", "pod-pod.cohesion_j_m3=2e4"]);
     assert_ne!(plain, cohesive);
 }
+
+#[test]
+fn a_pod_rig_simulates_the_effects_its_specification_names() {
+    // The rig simulates a run from its specification. Read back from the specification, the
+    // values must name the effects and specify the same run; before 2026-11-27 they lost
+    // them, so every pod-rig diagnosis simulated its effect steps without the effect.
+    use arachis::calibration::RunRequest;
+    use arachis::rigs::pod_bench::{parameter_values, PodBenchRig};
+    use arachis::rigs::repose_cylinder::TEST;
+    let study = study();
+    let rig = PodBenchRig::new(study.pod_world().unwrap(), TEST, ModeName::Quick);
+    let condition = BTreeMap::from([("lift_speed_m_s".to_owned(), 0.05)]);
+    for (name, value) in [
+        ("pod-pod.cohesion_j_m3", 2.0e3),
+        ("pod-pod.epsd_rolling_friction", 0.02),
+        ("pod-pod.viscoelastic_time_s", 2.0e-6),
+    ] {
+        let values = ParameterValues::from([(name.to_owned(), value)]);
+        let request = RunRequest {
+            values: &values,
+            condition: &condition,
+            replicate: 0,
+        };
+        let spec = rig.run_spec(&request).unwrap();
+        let read = parameter_values(&spec);
+        assert_eq!(read.get(name), Some(&value), "{name}");
+        let again = RunRequest {
+            values: &read,
+            ..request
+        };
+        assert_eq!(rig.run_spec(&again).unwrap().spec_hash(), spec.spec_hash());
+        // An effect that is off is not read back: the run is the one without it.
+        let off = parameter_values(
+            &rig.run_spec(&RunRequest {
+                values: &ParameterValues::new(),
+                ..request
+            })
+            .unwrap(),
+        );
+        assert!(!off.contains_key(name), "{name}");
+    }
+}

@@ -18,6 +18,7 @@ use super::kind::{ConditionKey, Quantity, RigKind, RigOptions, WorldKind, Worlds
 use super::parameter::{diagnosis_parameters_with_effects, RigParameter};
 use super::pod_world::observation::ReposeDetails;
 use super::pod_world::parameters::{Owner, EFFECTS};
+use super::pod_world::run_spec::RunPair;
 use super::pod_world::setup::RunInputs;
 use super::pod_world::{
     check_values, Experiment, ExperimentError, ModeName, Observation, ObservationDetails,
@@ -236,11 +237,19 @@ impl<'a> PodBenchRig<'a> {
 }
 
 /// Every registered parameter's value in `spec` (registry name → value in the parameter's
-/// unit, SI), read from the spec's materials and pairs; parameters whose material or pair
-/// the spec lacks are left out.
+/// unit, SI), read from the spec's materials and pairs, and every optional effect that is on
+/// (an effect at 0 is off, as if not given); parameters whose material or pair the spec
+/// lacks are left out. Fed back to [`RunInputs::resolve`], they specify the same run: a run
+/// is simulated from what its specification says, so it can never differ from its cache
+/// entry.
 pub fn parameter_values(spec: &RunSpec) -> BTreeMap<String, f64> {
+    let effects = EFFECTS.iter().filter(|p| {
+        matches!(p.sets.owner, Owner::Pair(pair)
+            if spec.pairs.get(pair).is_some_and(|v| pair_property(v, p.sets.property) != Some(0.0)))
+    });
     REGISTRY
         .iter()
+        .chain(effects)
         .filter_map(|p| {
             let value = match p.sets.owner {
                 Owner::Material(m) => spec.materials.get(m).and_then(|mat| match p.sets.property {
@@ -249,16 +258,27 @@ pub fn parameter_values(spec: &RunSpec) -> BTreeMap<String, f64> {
                     "density_kg_m3" => Some(mat.density_kg_m3),
                     _ => None,
                 }),
-                Owner::Pair(pair) => spec.pairs.get(pair).and_then(|v| match p.sets.property {
-                    "restitution" => Some(v.restitution),
-                    "static_friction" => Some(v.static_friction),
-                    "rolling_friction" => Some(v.rolling_friction),
-                    _ => None,
-                }),
+                Owner::Pair(pair) => spec
+                    .pairs
+                    .get(pair)
+                    .and_then(|v| pair_property(v, p.sets.property)),
             }?;
             Some((p.name.to_owned(), value))
         })
         .collect()
+}
+
+/// The value of a pair's coefficient or effect named `property` in a run spec.
+fn pair_property(pair: &RunPair, property: &str) -> Option<f64> {
+    match property {
+        "restitution" => Some(pair.restitution),
+        "static_friction" => Some(pair.static_friction),
+        "rolling_friction" => Some(pair.rolling_friction),
+        "cohesion_j_m3" => Some(pair.cohesion_j_m3),
+        "epsd_rolling_friction" => Some(pair.epsd_rolling_friction),
+        "viscoelastic_time_s" => Some(pair.viscoelastic_time_s),
+        _ => None,
+    }
 }
 
 /// The observation's responses: its quantity and the other quantities its details carry.
