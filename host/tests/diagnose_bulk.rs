@@ -11,41 +11,14 @@
 //! would have to be simulated again.
 
 mod cli_support;
-use cli_support::{arachis_at_root as arachis, file_stamps};
+use cli_support::replay;
 
 const MEASURED: &str = "testdata/diagnosis-bulk/measured.toml";
 const RUNS: &str = "testdata/diagnosis-bulk/runs";
 
 #[test]
 fn hidden_cohesion_in_hopper_and_drum_data_is_ranked_first() {
-    let dir = tempfile::tempdir().unwrap();
-    let runs = dir.path().join("runs");
-    std::fs::create_dir(&runs).unwrap();
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    for e in std::fs::read_dir(root.join(RUNS)).unwrap() {
-        let e = e.unwrap();
-        std::fs::copy(e.path(), runs.join(e.file_name())).unwrap();
-    }
-    let before = file_stamps(&runs);
-    let out = arachis(&[
-        "diagnose",
-        MEASURED,
-        "--runs",
-        runs.to_str().unwrap(),
-        "--replicates",
-        "2",
-    ]);
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert_eq!(
-        file_stamps(&runs),
-        before,
-        "a run was simulated instead of replayed: the committed cache no longer matches"
-    );
+    let text = replay("diagnose", MEASURED, RUNS, &["--replicates", "2"]);
     // Both rigs miss something; cohesion comes first and is claimed.
     assert!(text.contains("hopper   sum r^2"), "{text}");
     assert!(text.contains("drum     sum r^2"), "{text}");
@@ -61,4 +34,13 @@ fn hidden_cohesion_in_hopper_and_drum_data_is_ranked_first() {
         text.contains("verdict: the model lacks an effect; best candidate 'pod-pod.cohesion_j_m3'"),
         "{text}"
     );
+    // Each finite difference is shown against the two placements' scatter: cohesion's stands
+    // out of it at one condition at least, so its rank is evidence.
+    assert!(
+        text.contains(
+            "finite differences against the placements' scatter (paired over 2 placements;"
+        ),
+        "{text}"
+    );
+    assert!(!text.contains("warning: every"), "{text}");
 }

@@ -13,6 +13,7 @@ use anyhow::Result;
 
 use crate::diagnose::model::Model;
 use crate::diagnose::residuals::{lack_of_fit, Dataset};
+use crate::diagnose::scatter::{differences, lost_in_scatter, ScatteredDifference, CONFIDENCE};
 use crate::diagnose::score::{rank, Status, FAMILY_ALPHA, IDENTIFIABLE_FRACTION};
 use crate::diagnose::sensitivity::Linearisation;
 use crate::diagnose::separate::propose;
@@ -25,6 +26,10 @@ const EFFECT_COLUMN: usize = 14;
 /// A proposed measurement must raise the separation by this much (standard errors) to be
 /// worth making.
 const MIN_SEPARATION_GAIN: f64 = 0.01;
+
+/// What to do when finite differences are lost in the placements' scatter.
+const MORE_PLACEMENTS: &str =
+    "simulate more placements (--replicates: the SE falls as 1/sqrt(N)) or larger piles";
 
 /// Arguments of `arachis diagnose`.
 #[derive(Debug, clap::Args)]
@@ -41,6 +46,56 @@ pub struct Args {
     /// Simulated replicates per prediction of a random rig.
     #[command(flatten)]
     pub prediction: super::runs_args::PredictionArgs,
+}
+
+/// The finite differences of replicated rigs with their standard errors (`diagnose::scatter`),
+/// each flagged when it is within its scatter.
+fn write_scatter(
+    s: &mut String,
+    data: &Dataset,
+    differences: &[ScatteredDifference],
+) -> Result<()> {
+    use std::fmt::Write;
+    let within = differences.iter().filter(|d| d.within_scatter()).count();
+    writeln!(
+        s,
+        "\nfinite differences against the placements' scatter (paired over {} placements; \
+         {within} of {} within the scatter: |t| below Student's {:.0} % quantile, {:.2}):",
+        differences[0].placements,
+        differences.len(),
+        100.0 * CONFIDENCE,
+        differences[0].threshold()
+    )?;
+    let w = differences
+        .iter()
+        .map(|d| d.param.name.chars().count())
+        .max()
+        .unwrap_or(0);
+    for d in differences {
+        let o = &data.obs[d.obs];
+        let at: Vec<String> = o
+            .condition
+            .iter()
+            .map(|(k, v)| format!("{k} {v}"))
+            .collect();
+        writeln!(
+            s,
+            "  {:<w$} {} at {}: {:+.3e} ± {:.3e} per {} (t {:+.2}){}",
+            d.param.name,
+            data.experiments[o.experiment].rig,
+            at.join(", "),
+            d.value,
+            d.se,
+            d.param.unit,
+            d.t(),
+            if d.within_scatter() {
+                "  within the scatter"
+            } else {
+                ""
+            }
+        )?;
+    }
+    Ok(())
 }
 
 /// Runs `arachis diagnose`.
@@ -125,6 +180,10 @@ pub fn run(args: Args) -> Result<()> {
             "  NOT DISTINGUISHABLE: {a} and {b} explain the same misfit with these data (cosine {cos:.3})"
         )?;
     }
+    let scattered = differences(&lin, |obs| model.replicates_of(data.obs[obs].experiment));
+    if !scattered.is_empty() {
+        write_scatter(&mut s, &data, &scattered)?;
+    }
     match r.top() {
         Some(t) if r.any_claimed() => {
             // The effects the data cannot tell from the top one share its verdict.
@@ -160,6 +219,21 @@ pub fn run(args: Args) -> Result<()> {
             s,
             "\nverdict: no candidate effect is identifiable with these data; measure more conditions"
         )?,
+    }
+    let lost = |name: &str| lost_in_scatter(&scattered, name);
+    if !r.candidates.is_empty() && r.candidates.iter().all(|c| lost(c.effect.name)) {
+        writeln!(
+            s,
+            "warning: every candidate's finite differences lie within the placements' scatter, \
+             so these data say nothing of them yet; {MORE_PLACEMENTS}"
+        )?;
+    } else if let Some(t) = r.top().filter(|t| lost(t.effect.name)) {
+        writeln!(
+            s,
+            "warning: every finite difference of '{}' lies within the placements' scatter, \
+             so its rank is not evidence; {MORE_PLACEMENTS}",
+            t.effect.name
+        )?;
     }
     if !data.priors.is_empty() {
         writeln!(

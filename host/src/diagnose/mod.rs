@@ -7,7 +7,7 @@
 //! several conditions are the data, its rigs the model. One module per concept:
 //! [`params`] (the base parameters and effects the rigs declare), [`model`] (the rigs of a
 //! study's experiments), [`residuals`] (standardised residuals and lack of fit), [`sensitivity`] (finite-difference
-//! sensitivities), [`score`] (the ranking score test), [`fit`] (recalibration with an effect),
+//! sensitivities), [`scatter`] (which of them stand out of the placements' scatter), [`score`] (the ranking score test), [`fit`] (recalibration with an effect),
 //! [`synth`] (synthetic measurements), [`plot`] (SVG plots), [`separate`] (which measurement
 //! would tell two effects apart).
 
@@ -16,6 +16,7 @@ pub mod model;
 pub mod params;
 pub mod plot;
 pub mod residuals;
+pub mod scatter;
 pub mod score;
 pub mod sensitivity;
 pub mod separate;

@@ -13,6 +13,9 @@
 //! numbers, so a finite difference compares like with like and the placement's share of
 //! the scatter cancels as far as the runs stay correlated. A deterministic rig runs once.
 
+use std::collections::HashMap;
+use std::sync::Mutex;
+
 use anyhow::{Context, Result};
 
 use super::params::Catalogue;
@@ -42,6 +45,8 @@ pub struct Model<'a> {
     replicates: u32,
     /// Where simulations run when not on this machine's threads alone.
     executor: Option<Executor>,
+    /// Simulations run on this machine, by request (see [`Model::simulate_replicates`]).
+    memo: Mutex<HashMap<String, f64>>,
     /// Every parameter the rigs declare.
     pub catalogue: Catalogue,
 }
@@ -66,6 +71,7 @@ impl<'a> Model<'a> {
                 .collect(),
             replicates: DEFAULT_RANDOM_REPLICATES,
             executor: None,
+            memo: Mutex::new(HashMap::new()),
             quantities: experiments.iter().map(|e| e.quantity.clone()).collect(),
             catalogue: Catalogue::of_rigs(experiments.iter().map(|e| e.rig.as_str())),
         })
@@ -81,6 +87,12 @@ impl<'a> Model<'a> {
     pub fn with_replicates(mut self, n: u32) -> Self {
         self.replicates = n.max(1);
         self
+    }
+
+    /// Whether some experiment is predicted by the mean of two or more replicates, whose
+    /// scatter then bounds what a finite difference can tell.
+    pub fn has_replicates(&self) -> bool {
+        (0..self.random.len()).any(|e| self.replicates_of(e) > 1)
     }
 
     /// Simulated replicates per prediction of experiment `experiment`.
@@ -106,6 +118,20 @@ impl<'a> Model<'a> {
     /// parallel or through the attached executor: the mean over the experiment's replicates
     /// ([`Model::replicates_of`]; the same placements for every run).
     pub fn simulate_all(&self, runs: &[(usize, &Condition, ParameterValues)]) -> Result<Vec<f64>> {
+        Ok(self
+            .simulate_replicates(runs)?
+            .iter()
+            .map(|each| each.iter().fold(0.0, |m, v| m + v / each.len() as f64))
+            .collect())
+    }
+
+    /// Every replicate of each (experiment, condition, parameters), in order: run k's values,
+    /// replicate 0 first. A simulation this model has already run on this machine is not run
+    /// again (an executor's run cache does the same for its runs).
+    pub fn simulate_replicates(
+        &self,
+        runs: &[(usize, &Condition, ParameterValues)],
+    ) -> Result<Vec<Vec<f64>>> {
         // Every simulation of every run, replicates of one run adjacent.
         let each: Vec<(usize, u32)> = runs
             .iter()
@@ -142,14 +168,15 @@ impl<'a> Model<'a> {
                     .collect()
             }
         };
-        let mut means = vec![0.0; runs.len()];
-        for (&(k, _), v) in each.iter().zip(&values) {
-            means[k] += v / self.replicates_of(runs[k].0) as f64;
+        let mut out: Vec<Vec<f64>> = vec![Vec::new(); runs.len()];
+        for (&(k, _), v) in each.iter().zip(values) {
+            out[k].push(v);
         }
-        Ok(means)
+        Ok(out)
     }
 
-    /// One simulation (replicate `replicate`) on this thread.
+    /// One simulation (replicate `replicate`) on this thread, or its value from an earlier
+    /// call.
     fn simulate_here(
         &self,
         experiment: usize,
@@ -157,6 +184,11 @@ impl<'a> Model<'a> {
         p: &ParameterValues,
         replicate: u32,
     ) -> Result<f64> {
+        // The request's exact values: `{:?}` prints every f64 so that it reads back the same.
+        let key = format!("{experiment}|{replicate}|{condition:?}|{p:?}");
+        if let Some(v) = self.memo.lock().ok().and_then(|m| m.get(&key).copied()) {
+            return Ok(v);
+        }
         let request = RunRequest {
             values: p,
             condition,
@@ -164,6 +196,11 @@ impl<'a> Model<'a> {
         };
         let quantity = &self.quantities[experiment];
         let responses = self.rigs[experiment].run(&request)?;
-        response(&responses, quantity).with_context(|| format!("experiment {}", experiment + 1))
+        let v = response(&responses, quantity)
+            .with_context(|| format!("experiment {}", experiment + 1))?;
+        if let Ok(mut memo) = self.memo.lock() {
+            memo.insert(key, v);
+        }
+        Ok(v)
     }
 }

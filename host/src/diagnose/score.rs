@@ -251,6 +251,8 @@ mod tests {
             candidates: vec![effect("viscoelastic"), effect("drag")],
             candidate_jacobian: DMatrix::from_fn(3, 2, |i, j| [s_visco, s_drag][j][i]),
             prior_rows: Vec::new(),
+            calibrated_scatter: DMatrix::zeros(3, 1),
+            candidate_scatter: DMatrix::zeros(3, 2),
         };
         (data, lin)
     }

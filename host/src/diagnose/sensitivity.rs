@@ -65,6 +65,62 @@ pub fn jacobian(
     Ok(DMatrix::from_column_slice(n, params.len(), &cols))
 }
 
+/// Standard errors of the columns of [`jacobian`] from the placements' scatter: each
+/// replicate's own finite difference (paired: the same placement at every parameter set),
+/// their SD over √(replicates). 0 for an experiment simulated once. N × len(params). The
+/// simulations are those of [`jacobian`] and [`predict`], which the model or its run cache
+/// does not run again.
+pub fn jacobian_scatter(
+    data: &Dataset,
+    model: &Model<'_>,
+    p: &ParameterValues,
+    params: &[&ParamInfo],
+) -> Result<DMatrix<f64>> {
+    let n = data.obs.len();
+    let at_runs: Vec<_> = data
+        .obs
+        .iter()
+        .map(|o| (o.experiment, &o.condition, p.clone()))
+        .collect();
+    let at = model.simulate_replicates(&at_runs)?;
+    let mut cols = Vec::with_capacity(n * params.len());
+    for info in params {
+        let difference = Difference::at(info, value(info, p))?;
+        let steps: Vec<_> = difference
+            .stepped(info, p)
+            .into_iter()
+            .flat_map(|shifted| {
+                data.obs
+                    .iter()
+                    .map(move |o| (o.experiment, &o.condition, shifted.clone()))
+            })
+            .collect();
+        let y = model.simulate_replicates(&steps)?;
+        let m = difference.shifts().len();
+        cols.extend((0..n).map(|i| {
+            let paired: Vec<f64> = (0..at[i].len())
+                .map(|r| {
+                    let ys = [y[i][r], y[(m - 1) * n + i][r]];
+                    difference.derivative(info.fd_step, &ys[..m], at[i][r])
+                })
+                .collect();
+            standard_error(&paired)
+        }));
+    }
+    Ok(DMatrix::from_column_slice(n, params.len(), &cols))
+}
+
+/// Standard error of the mean of `x`: SD/√n, 0 for fewer than two values.
+fn standard_error(x: &[f64]) -> f64 {
+    if x.len() < 2 {
+        return 0.0;
+    }
+    let n = x.len() as f64;
+    let mean = x.iter().sum::<f64>() / n;
+    let var = x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (var / n).sqrt()
+}
+
 /// Which finite difference a sensitivity takes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Difference {
@@ -145,6 +201,11 @@ pub struct Linearisation {
     pub candidate_jacobian: DMatrix<f64>,
     /// The bench priors on calibrated parameters, as extra rows of the score test.
     pub prior_rows: Vec<PriorRow>,
+    /// Standard errors of [`Linearisation::calibrated_jacobian`] from the placements'
+    /// scatter ([`jacobian_scatter`]); zeros when no experiment is replicated.
+    pub calibrated_scatter: DMatrix<f64>,
+    /// Standard errors of [`Linearisation::candidate_jacobian`], likewise.
+    pub candidate_scatter: DMatrix<f64>,
 }
 
 /// A bench prior as one more standardised observation of a calibrated parameter: residual
@@ -208,6 +269,15 @@ impl Linearisation {
             .collect();
         let calibrated_jacobian = jacobian(data, model, p, &predictions, &calibrated)?;
         let candidate_jacobian = jacobian(data, model, p, &predictions, &candidates)?;
+        let scatter = |params: &[&ParamInfo]| {
+            if model.has_replicates() {
+                jacobian_scatter(data, model, p, params)
+            } else {
+                Ok(DMatrix::zeros(data.obs.len(), params.len()))
+            }
+        };
+        let calibrated_scatter = scatter(&calibrated)?;
+        let candidate_scatter = scatter(&candidates)?;
         let prior_rows = data
             .priors
             .iter()
@@ -227,6 +297,8 @@ impl Linearisation {
             candidates,
             candidate_jacobian,
             prior_rows,
+            calibrated_scatter,
+            candidate_scatter,
         })
     }
 }

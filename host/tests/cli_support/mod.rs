@@ -36,3 +36,31 @@ pub fn file_stamps(dir: &std::path::Path) -> Vec<(std::ffi::OsString, std::time:
     v.sort();
     v
 }
+
+/// Runs `arachis COMMAND STUDY --runs COPY ARGS` from the repository root on a copy of the
+/// committed run cache `runs` (relative to the root), and fails if any run had to be
+/// simulated instead of replayed. Returns what the command printed.
+pub fn replay(command: &str, study: &str, runs: &str, args: &[&str]) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    let copy = dir.path().join("runs");
+    std::fs::create_dir(&copy).unwrap();
+    for e in std::fs::read_dir(std::path::Path::new(REPO_ROOT).join(runs)).unwrap() {
+        let e = e.unwrap();
+        std::fs::copy(e.path(), copy.join(e.file_name())).unwrap();
+    }
+    let before = file_stamps(&copy);
+    let mut all = vec![command, study, "--runs", copy.to_str().unwrap()];
+    all.extend_from_slice(args);
+    let out = arachis_at_root(&all);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        file_stamps(&copy),
+        before,
+        "a run was simulated instead of replayed: the committed cache no longer matches"
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
