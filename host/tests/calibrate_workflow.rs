@@ -55,6 +55,7 @@ fn calibrate_into(
     let provenance = Provenance {
         study: study.name().to_owned(),
         mode: "quick".into(),
+        pile: None,
     };
     let json = write_calibration(&problem, &outcome.stages, &provenance, out)?;
     Ok(Done { outcome, json })

@@ -18,7 +18,7 @@ use anyhow::{bail, ensure, Context};
 use crate::calibration::{calibrate, Executor, Outcome, Problem, Progress};
 use crate::cluster::recipe::ShippedPull;
 use crate::cluster::{on_cluster_if_chosen, ClusterArgs, RigRecipe};
-use crate::report::{pull_off, write_calibration, Provenance};
+use crate::report::{pull_off, write_calibration, PileSize, Provenance};
 use crate::rigs::pod_world::ModeName;
 use crate::rigs::pull_off::PullOffRig;
 use crate::study::Study;
@@ -177,9 +177,23 @@ pub fn calibrate_study(args: &Args, study: &Study) -> anyhow::Result<()> {
         let rig = PullOffRig { base };
         return report_pull_off(args, &problem, &outcome, name, &rig, &out, started);
     }
+    // A DEM pile calibration states its piles' size; the surrogate simulates no pile.
+    let pile = match (&mode, args.simulator) {
+        (Some((m, _)), SimulatorChoice::Dem) => study
+            .file()
+            .plan
+            .as_ref()
+            .and_then(|p| p.modes.get(m))
+            .map(|size| PileSize {
+                pods: size.pods,
+                spheres_per_pod: size.spheres_per_pod,
+            }),
+        _ => None,
+    };
     let provenance = Provenance {
         study: name.to_owned(),
         mode: mode.map_or("-".to_owned(), |(m, _)| m),
+        pile,
     };
     let c = write_calibration(&problem, &outcome.stages, &provenance, &out)?;
     let strongest = outcome

@@ -27,6 +27,18 @@ pub struct Provenance {
     pub study: String,
     /// The run mode (`-` for a rig without modes).
     pub mode: String,
+    /// The size of each pile, for a calibration that simulates pod piles (the DEM repose
+    /// rig); `None` for any other rig, which keeps its file as it was.
+    pub pile: Option<PileSize>,
+}
+
+/// How many pods a simulated pile holds, and of how many spheres each is made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PileSize {
+    /// Pods per pile.
+    pub pods: u32,
+    /// Spheres filling each pod.
+    pub spheres_per_pod: u32,
 }
 
 /// A measured quantity and its condition.
@@ -143,6 +155,12 @@ pub struct CalibrationJson {
     pub study: String,
     /// The run mode.
     pub mode: String,
+    /// Pods per simulated pile (a DEM pile calibration only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pods: Option<u32>,
+    /// Spheres per pod (a DEM pile calibration only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spheres_per_pod: Option<u32>,
     /// The rig's id.
     pub simulator: String,
     /// The rig in words.
@@ -236,6 +254,8 @@ impl CalibrationJson {
             format: CALIBRATION_FORMAT,
             study: provenance.study.clone(),
             mode: provenance.mode.clone(),
+            pods: provenance.pile.map(|p| p.pods),
+            spheres_per_pod: provenance.pile.map(|p| p.spheres_per_pod),
             simulator: rig.id(),
             simulator_description: rig.description(),
             target: target(&problem.target),
