@@ -29,7 +29,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use arachis::calibration::{calibrate, Executor, Progress, Responses, Rig, RigError, RunRequest};
-use arachis::report::{write_calibration, PileSize, Provenance};
+use arachis::report::{write_calibration, Provenance};
 use arachis::rigs::pod_bench::PodBenchRig;
 use arachis::rigs::pod_world::ModeName;
 use arachis::rigs::repose_cylinder::TEST as REPOSE;
@@ -119,14 +119,10 @@ fn replay(c: Committed) {
     let (outcome, resimulated) = rayon::join(
         || {
             let outcome = calibrate(&problem, &executor).unwrap();
-            let size = &study.file().plan.as_ref().unwrap().modes[c.mode.as_str()];
             let provenance = Provenance {
                 study: study.name().to_owned(),
                 mode: c.mode.as_str().into(),
-                pile: Some(PileSize {
-                    pods: size.pods,
-                    spheres_per_pod: size.spheres_per_pod,
-                }),
+                pile: Some(study.file().plan.as_ref().unwrap().modes[c.mode.as_str()].clone()),
             };
             write_calibration(&problem, &outcome.stages, &provenance, &out).unwrap();
             outcome

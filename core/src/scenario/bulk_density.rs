@@ -29,7 +29,7 @@ use super::insertion::{InsertionRegion, MICROMETRES_PER_M};
 use super::{bench_bed, ScenarioError};
 use crate::body::{Storage, StorageLengths};
 use crate::num::Scalar;
-use crate::units::STANDARD_GRAVITY_M_S2;
+use crate::units::{DENSITY_KG_M3_TO_G_MM3, LENGTH_M_TO_MM, STANDARD_GRAVITY_M_S2};
 use crate::wall::{WallGeometry, WallSpec};
 use crate::world::World;
 use core::f64::consts::PI;
@@ -59,10 +59,6 @@ pub const SURFACE_CLEARANCE_MM: f64 = 16.0;
 pub const RANDOM_CLOSE_PACKING: f64 = 0.64;
 /// Time the bed is left to settle after its highest sphere would have reached the floor, s.
 pub const SETTLE_AFTER_FILL_S: f64 = 0.25;
-/// Cubic millimetres per cubic metre (the core's volumes are in mm³, densities in kg/m³).
-const MM3_PER_M3: f64 = 1.0e9;
-/// Kilograms per gram (the core's masses are in g).
-const KG_PER_G: f64 = 1.0e-3;
 
 /// A pour of `particles` spheres inserted from `seed` in a column whose lowest centres start
 /// `drop_height_um` (µm) above the floor.
@@ -88,11 +84,9 @@ impl BulkDensity {
     /// Fewest spheres whose bed, even at random close packing, reaches
     /// [`SURFACE_CLEARANCE_MM`] above the slab's top.
     pub fn min_particles() -> u32 {
-        let r_mm = bench_bed::SPHERE_RADIUS_UM as f64 / 1.0e3;
-        let cylinder_mm = CYLINDER_RADIUS_M * 1.0e3;
-        let bed_mm3 = PI * cylinder_mm * cylinder_mm * (SLAB_TOP_MM + SURFACE_CLEARANCE_MM);
-        let sphere_mm3 = 4.0 / 3.0 * PI * r_mm * r_mm * r_mm;
-        libm::ceil(RANDOM_CLOSE_PACKING * bed_mm3 / sphere_mm3) as u32
+        let r_mm = bench_bed::SPHERE_RADIUS_UM as f64 / MICROMETRES_PER_M * LENGTH_M_TO_MM;
+        let bed_mm3 = cylinder_area_mm2() * (SLAB_TOP_MM + SURFACE_CLEARANCE_MM);
+        libm::ceil(RANDOM_CLOSE_PACKING * bed_mm3 / ball_volume(r_mm)) as u32
     }
 
     /// Arena lengths this pour needs (one body and one sphere per particle).
@@ -162,6 +156,17 @@ impl BulkDensity {
     }
 }
 
+/// The measuring cylinder's cross-section, mm².
+fn cylinder_area_mm2() -> f64 {
+    let radius_mm = CYLINDER_RADIUS_M * LENGTH_M_TO_MM;
+    PI * radius_mm * radius_mm
+}
+
+/// Volume of a ball of radius `r`, in the cube of `r`'s unit: 4πr³/3.
+fn ball_volume(r: f64) -> f64 {
+    4.0 / 3.0 * PI * r * r * r
+}
+
 /// Volume of a sphere of radius `r` centred at height `c` that lies between the heights
 /// `bottom` and `top` (any one length unit, volume in its cube):
 /// V = π[R²t − t³/3] between t = max(bottom − c, −R) and t = min(top − c, R).
@@ -188,13 +193,11 @@ pub fn slab_bulk_density_kg_m3<S: Scalar>(world: &World<'_, S>) -> f64 {
             let r = s.radius.to_f64();
             let inside =
                 sphere_volume_between(s.position.z.to_f64(), r, SLAB_BOTTOM_MM, SLAB_TOP_MM);
-            let whole = 4.0 / 3.0 * PI * r * r * r;
-            bodies[s.body as usize].mass.to_f64() * inside / whole
+            bodies[s.body as usize].mass.to_f64() * inside / ball_volume(r)
         })
         .sum();
-    let radius_mm = CYLINDER_RADIUS_M * 1.0e3;
-    let slab_mm3 = PI * radius_mm * radius_mm * (SLAB_TOP_MM - SLAB_BOTTOM_MM);
-    mass_g * KG_PER_G / (slab_mm3 / MM3_PER_M3)
+    let slab_mm3 = cylinder_area_mm2() * (SLAB_TOP_MM - SLAB_BOTTOM_MM);
+    mass_g / slab_mm3 / DENSITY_KG_M3_TO_G_MM3
 }
 
 #[cfg(test)]
@@ -206,7 +209,7 @@ mod tests {
     #[test]
     fn the_slab_volume_of_a_sphere_matches_its_caps() {
         let r = 4.0;
-        let whole = 4.0 / 3.0 * PI * r * r * r;
+        let whole = ball_volume(r);
         // Wholly inside, wholly outside, cut through its centre: a hemisphere.
         assert!((sphere_volume_between(40.0, r, 16.0, 64.0) - whole).abs() < 1e-9);
         assert_eq!(sphere_volume_between(70.0, r, 16.0, 64.0), 0.0);

@@ -18,7 +18,7 @@ use anyhow::{bail, ensure, Context};
 use crate::calibration::{calibrate, Executor, Outcome, Problem, Progress};
 use crate::cluster::recipe::ShippedPull;
 use crate::cluster::{on_cluster_if_chosen, ClusterArgs, RigRecipe};
-use crate::report::{pull_off, write_calibration, PileSize, Provenance};
+use crate::report::{pull_off, write_calibration, Provenance};
 use crate::rigs::pod_world::ModeName;
 use crate::rigs::pull_off::PullOffRig;
 use crate::study::Study;
@@ -184,10 +184,7 @@ pub fn calibrate_study(args: &Args, study: &Study) -> anyhow::Result<()> {
             .plan
             .as_ref()
             .and_then(|p| p.modes.get(m))
-            .map(|size| PileSize {
-                pods: size.pods,
-                spheres_per_pod: size.spheres_per_pod,
-            }),
+            .cloned(),
         _ => None,
     };
     let provenance = Provenance {

@@ -13,9 +13,6 @@
 //! numbers, so a finite difference compares like with like and the placement's share of
 //! the scatter cancels as far as the runs stay correlated. A deterministic rig runs once.
 
-use std::collections::HashMap;
-use std::sync::Mutex;
-
 use anyhow::{Context, Result};
 
 use super::params::Catalogue;
@@ -31,6 +28,11 @@ use crate::study::Study;
 /// ([`Model::with_replicates`]).
 pub const DEFAULT_RANDOM_REPLICATES: u32 = 4;
 
+/// The prediction from one run's replicates: their mean, summed in replicate order.
+pub fn replicate_mean(values: &[f64]) -> f64 {
+    values.iter().fold(0.0, |m, v| m + v / values.len() as f64)
+}
+
 /// The rigs of a study's experiments and their parameters.
 pub struct Model<'a> {
     /// One rig per experiment, in the data's order.
@@ -45,8 +47,6 @@ pub struct Model<'a> {
     replicates: u32,
     /// Where simulations run when not on this machine's threads alone.
     executor: Option<Executor>,
-    /// Simulations run on this machine, by request (see [`Model::simulate_replicates`]).
-    memo: Mutex<HashMap<String, f64>>,
     /// Every parameter the rigs declare.
     pub catalogue: Catalogue,
 }
@@ -71,7 +71,6 @@ impl<'a> Model<'a> {
                 .collect(),
             replicates: DEFAULT_RANDOM_REPLICATES,
             executor: None,
-            memo: Mutex::new(HashMap::new()),
             quantities: experiments.iter().map(|e| e.quantity.clone()).collect(),
             catalogue: Catalogue::of_rigs(experiments.iter().map(|e| e.rig.as_str())),
         })
@@ -87,12 +86,6 @@ impl<'a> Model<'a> {
     pub fn with_replicates(mut self, n: u32) -> Self {
         self.replicates = n.max(1);
         self
-    }
-
-    /// Whether some experiment is predicted by the mean of two or more replicates, whose
-    /// scatter then bounds what a finite difference can tell.
-    pub fn has_replicates(&self) -> bool {
-        (0..self.random.len()).any(|e| self.replicates_of(e) > 1)
     }
 
     /// Simulated replicates per prediction of experiment `experiment`.
@@ -121,13 +114,12 @@ impl<'a> Model<'a> {
         Ok(self
             .simulate_replicates(runs)?
             .iter()
-            .map(|each| each.iter().fold(0.0, |m, v| m + v / each.len() as f64))
+            .map(|each| replicate_mean(each))
             .collect())
     }
 
     /// Every replicate of each (experiment, condition, parameters), in order: run k's values,
-    /// replicate 0 first. A simulation this model has already run on this machine is not run
-    /// again (an executor's run cache does the same for its runs).
+    /// replicate 0 first.
     pub fn simulate_replicates(
         &self,
         runs: &[(usize, &Condition, ParameterValues)],
@@ -175,8 +167,7 @@ impl<'a> Model<'a> {
         Ok(out)
     }
 
-    /// One simulation (replicate `replicate`) on this thread, or its value from an earlier
-    /// call.
+    /// One simulation (replicate `replicate`) on this thread.
     fn simulate_here(
         &self,
         experiment: usize,
@@ -184,11 +175,6 @@ impl<'a> Model<'a> {
         p: &ParameterValues,
         replicate: u32,
     ) -> Result<f64> {
-        // The request's exact values: `{:?}` prints every f64 so that it reads back the same.
-        let key = format!("{experiment}|{replicate}|{condition:?}|{p:?}");
-        if let Some(v) = self.memo.lock().ok().and_then(|m| m.get(&key).copied()) {
-            return Ok(v);
-        }
         let request = RunRequest {
             values: p,
             condition,
@@ -196,11 +182,6 @@ impl<'a> Model<'a> {
         };
         let quantity = &self.quantities[experiment];
         let responses = self.rigs[experiment].run(&request)?;
-        let v = response(&responses, quantity)
-            .with_context(|| format!("experiment {}", experiment + 1))?;
-        if let Ok(mut memo) = self.memo.lock() {
-            memo.insert(key, v);
-        }
-        Ok(v)
+        response(&responses, quantity).with_context(|| format!("experiment {}", experiment + 1))
     }
 }

@@ -1,7 +1,7 @@
 //! Finite differences against the placements' scatter. A rig with a random placement (a pod
 //! pile, a poured bed) is predicted by the mean of a few placements, and every parameter set
 //! is simulated at the same placements, so each placement gives its own finite difference.
-//! Their spread is the difference's standard error ([`super::sensitivity::jacobian_scatter`]).
+//! Their spread is the difference's standard error ([`super::sensitivity::jacobian_and_scatter`]).
 //! A granular pile is chaotic: a step of 0.01 in a friction coefficient can move one
 //! placement's angle by ten degrees either way, and then the mean difference is noise. This
 //! module says which differences stand out of their scatter, so that a ranking built on

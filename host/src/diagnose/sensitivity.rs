@@ -10,19 +10,32 @@
 use anyhow::{bail, Result};
 use nalgebra::{DMatrix, DVector};
 
-use super::model::Model;
+use super::model::{replicate_mean, Model};
 use super::params::{interval, set, value, ParamInfo, Role};
 use super::residuals::Dataset;
 use crate::calibration::ParameterValues;
 
 /// Predictions at every condition of `data` with parameters `p`.
 pub fn predict(data: &Dataset, model: &Model<'_>, p: &ParameterValues) -> Result<Vec<f64>> {
+    Ok(predict_replicates(data, model, p)?
+        .iter()
+        .map(|v| replicate_mean(v))
+        .collect())
+}
+
+/// Every replicate of the prediction at every condition of `data` with parameters `p`
+/// ([`Model::simulate_replicates`]); [`predict`] is their means.
+pub fn predict_replicates(
+    data: &Dataset,
+    model: &Model<'_>,
+    p: &ParameterValues,
+) -> Result<Vec<Vec<f64>>> {
     let runs: Vec<_> = data
         .obs
         .iter()
         .map(|o| (o.experiment, &o.condition, p.clone()))
         .collect();
-    model.simulate_all(&runs)
+    model.simulate_replicates(&runs)
 }
 
 /// Columns ∂ŷ/∂θ (observable unit per parameter unit) for each parameter in `params`, given
@@ -35,79 +48,90 @@ pub fn jacobian(
     at: &[f64],
     params: &[&ParamInfo],
 ) -> Result<DMatrix<f64>> {
-    let n = data.obs.len();
-    let columns: Vec<(f64, Difference)> = params
-        .iter()
-        .map(|info| Ok((info.fd_step, Difference::at(info, value(info, p))?)))
-        .collect::<Result<_>>()?;
-    let mut runs = Vec::new();
-    for (info, &(_, difference)) in params.iter().zip(&columns) {
-        for shifted in difference.stepped(info, p) {
-            runs.extend(
-                data.obs
-                    .iter()
-                    .map(|o| (o.experiment, &o.condition, shifted.clone())),
-            );
-        }
-    }
-    let y = model.simulate_all(&runs)?;
-    let mut cols = Vec::with_capacity(n * params.len());
-    let mut k = 0;
-    for &(h, difference) in &columns {
-        let m = difference.shifts().len();
-        let block = &y[k..k + m * n];
-        k += m * n;
-        cols.extend((0..n).map(|i| {
-            let ys = [block[i], block[(m - 1) * n + i]];
-            difference.derivative(h, &ys[..m], at[i])
-        }));
-    }
-    Ok(DMatrix::from_column_slice(n, params.len(), &cols))
+    let steps = Steps::simulate(data, model, p, params)?;
+    let means: Vec<f64> = steps.y.iter().map(|v| replicate_mean(v)).collect();
+    Ok(DMatrix::from_fn(data.obs.len(), params.len(), |i, j| {
+        steps.derivative(j, i, |k| means[k], at[i])
+    }))
 }
 
-/// Standard errors of the columns of [`jacobian`] from the placements' scatter: each
-/// replicate's own finite difference (paired: the same placement at every parameter set),
-/// their SD over √(replicates). 0 for an experiment simulated once. N × len(params). The
-/// simulations are those of [`jacobian`] and [`predict`], which the model or its run cache
-/// does not run again.
-pub fn jacobian_scatter(
+/// [`jacobian`] at the predictions' replicates `at` (each condition's placements, as
+/// [`Model::simulate_replicates`] gives them), with the columns' standard errors from the
+/// placements' scatter: each placement's own finite difference (paired: the same placement
+/// at every parameter set), their SD over √(placements); 0 for a condition simulated once.
+/// The derivatives are those [`jacobian`] gives at the replicates' means, bit for bit.
+pub fn jacobian_and_scatter(
     data: &Dataset,
     model: &Model<'_>,
     p: &ParameterValues,
+    at: &[Vec<f64>],
     params: &[&ParamInfo],
-) -> Result<DMatrix<f64>> {
-    let n = data.obs.len();
-    let at_runs: Vec<_> = data
-        .obs
-        .iter()
-        .map(|o| (o.experiment, &o.condition, p.clone()))
-        .collect();
-    let at = model.simulate_replicates(&at_runs)?;
-    let mut cols = Vec::with_capacity(n * params.len());
-    for info in params {
-        let difference = Difference::at(info, value(info, p))?;
-        let steps: Vec<_> = difference
-            .stepped(info, p)
-            .into_iter()
-            .flat_map(|shifted| {
-                data.obs
-                    .iter()
-                    .map(move |o| (o.experiment, &o.condition, shifted.clone()))
-            })
+) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
+    let steps = Steps::simulate(data, model, p, params)?;
+    let means: Vec<f64> = steps.y.iter().map(|v| replicate_mean(v)).collect();
+    let (n, cols) = (data.obs.len(), params.len());
+    let value = DMatrix::from_fn(n, cols, |i, j| {
+        steps.derivative(j, i, |k| means[k], replicate_mean(&at[i]))
+    });
+    let scatter = DMatrix::from_fn(n, cols, |i, j| {
+        let paired: Vec<f64> = (0..at[i].len())
+            .map(|r| steps.derivative(j, i, |k| steps.y[k][r], at[i][r]))
             .collect();
-        let y = model.simulate_replicates(&steps)?;
-        let m = difference.shifts().len();
-        cols.extend((0..n).map(|i| {
-            let paired: Vec<f64> = (0..at[i].len())
-                .map(|r| {
-                    let ys = [y[i][r], y[(m - 1) * n + i][r]];
-                    difference.derivative(info.fd_step, &ys[..m], at[i][r])
-                })
-                .collect();
-            standard_error(&paired)
-        }));
+        standard_error(&paired)
+    });
+    Ok((value, scatter))
+}
+
+/// The stepped runs of a Jacobian: each parameter's step and difference, and every replicate
+/// of every run, parameter j's shift s at condition i at index `offsets[j] + s·N + i`.
+struct Steps {
+    columns: Vec<(f64, Difference)>,
+    offsets: Vec<usize>,
+    n: usize,
+    y: Vec<Vec<f64>>,
+}
+
+impl Steps {
+    /// Every stepped run of `params` at `p`, simulated in one batch.
+    fn simulate(
+        data: &Dataset,
+        model: &Model<'_>,
+        p: &ParameterValues,
+        params: &[&ParamInfo],
+    ) -> Result<Self> {
+        let columns: Vec<(f64, Difference)> = params
+            .iter()
+            .map(|info| Ok((info.fd_step, Difference::at(info, value(info, p))?)))
+            .collect::<Result<_>>()?;
+        let mut runs = Vec::new();
+        let mut offsets = Vec::with_capacity(params.len());
+        for (info, &(_, difference)) in params.iter().zip(&columns) {
+            offsets.push(runs.len());
+            for shifted in difference.stepped(info, p) {
+                runs.extend(
+                    data.obs
+                        .iter()
+                        .map(|o| (o.experiment, &o.condition, shifted.clone())),
+                );
+            }
+        }
+        Ok(Steps {
+            columns,
+            offsets,
+            n: data.obs.len(),
+            y: model.simulate_replicates(&runs)?,
+        })
     }
-    Ok(DMatrix::from_column_slice(n, params.len(), &cols))
+
+    /// ∂ŷ/∂θ of column `j` at condition `i`, from each stepped run's value `y(k)` and the
+    /// unstepped prediction `at`.
+    fn derivative(&self, j: usize, i: usize, y: impl Fn(usize) -> f64, at: f64) -> f64 {
+        let (h, difference) = self.columns[j];
+        let m = difference.shifts().len();
+        let k = self.offsets[j] + i;
+        let ys = [y(k), y(k + (m - 1) * self.n)];
+        difference.derivative(h, &ys[..m], at)
+    }
 }
 
 /// Standard error of the mean of `x`: SD/√n, 0 for fewer than two values.
@@ -202,7 +226,7 @@ pub struct Linearisation {
     /// The bench priors on calibrated parameters, as extra rows of the score test.
     pub prior_rows: Vec<PriorRow>,
     /// Standard errors of [`Linearisation::calibrated_jacobian`] from the placements'
-    /// scatter ([`jacobian_scatter`]); zeros when no experiment is replicated.
+    /// scatter ([`jacobian_and_scatter`]); zeros where a condition was simulated once.
     pub calibrated_scatter: DMatrix<f64>,
     /// Standard errors of [`Linearisation::candidate_jacobian`], likewise.
     pub candidate_scatter: DMatrix<f64>,
@@ -251,7 +275,8 @@ impl Linearisation {
     /// Predictions and sensitivities at the calibration `p`: the base parameters `p` sets
     /// and the effects already on are calibrated, the effects off are candidates.
     pub fn new(data: &Dataset, model: &Model<'_>, p: &ParameterValues) -> Result<Self> {
-        let predictions = predict(data, model, p)?;
+        let at = predict_replicates(data, model, p)?;
+        let predictions: Vec<f64> = at.iter().map(|v| replicate_mean(v)).collect();
         let calibrated: Vec<&'static ParamInfo> = model
             .catalogue
             .0
@@ -267,17 +292,10 @@ impl Linearisation {
             .effects()
             .filter(|i| value(i, p) == 0.0)
             .collect();
-        let calibrated_jacobian = jacobian(data, model, p, &predictions, &calibrated)?;
-        let candidate_jacobian = jacobian(data, model, p, &predictions, &candidates)?;
-        let scatter = |params: &[&ParamInfo]| {
-            if model.has_replicates() {
-                jacobian_scatter(data, model, p, params)
-            } else {
-                Ok(DMatrix::zeros(data.obs.len(), params.len()))
-            }
-        };
-        let calibrated_scatter = scatter(&calibrated)?;
-        let candidate_scatter = scatter(&candidates)?;
+        let (calibrated_jacobian, calibrated_scatter) =
+            jacobian_and_scatter(data, model, p, &at, &calibrated)?;
+        let (candidate_jacobian, candidate_scatter) =
+            jacobian_and_scatter(data, model, p, &at, &candidates)?;
         let prior_rows = data
             .priors
             .iter()

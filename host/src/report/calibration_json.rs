@@ -15,6 +15,7 @@ use crate::calibration::plan::steepest_ascent::SteepestAscent;
 use crate::calibration::plan::validation::Validation;
 use crate::calibration::settings::SurfaceDesign;
 use crate::calibration::{Factor, Objective, Problem, RunRecord, Stages};
+use crate::rigs::pod_world::Mode;
 use crate::stats::Anova;
 
 /// Format tag of `calibration.json`.
@@ -27,18 +28,10 @@ pub struct Provenance {
     pub study: String,
     /// The run mode (`-` for a rig without modes).
     pub mode: String,
-    /// The size of each pile, for a calibration that simulates pod piles (the DEM repose
-    /// rig); `None` for any other rig, which keeps its file as it was.
-    pub pile: Option<PileSize>,
-}
-
-/// How many pods a simulated pile holds, and of how many spheres each is made.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct PileSize {
-    /// Pods per pile.
-    pub pods: u32,
-    /// Spheres filling each pod.
-    pub spheres_per_pod: u32,
+    /// The size of each pile (the mode's pods and spheres per pod), for a calibration that
+    /// simulates pod piles (the DEM repose rig); `None` for any other rig, which keeps its
+    /// file as it was.
+    pub pile: Option<Mode>,
 }
 
 /// A measured quantity and its condition.
@@ -254,8 +247,8 @@ impl CalibrationJson {
             format: CALIBRATION_FORMAT,
             study: provenance.study.clone(),
             mode: provenance.mode.clone(),
-            pods: provenance.pile.map(|p| p.pods),
-            spheres_per_pod: provenance.pile.map(|p| p.spheres_per_pod),
+            pods: provenance.pile.as_ref().map(|p| p.pods),
+            spheres_per_pod: provenance.pile.as_ref().map(|p| p.spheres_per_pod),
             simulator: rig.id(),
             simulator_description: rig.description(),
             target: target(&problem.target),

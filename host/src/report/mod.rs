@@ -20,7 +20,7 @@ use crate::calibration::plan::validation;
 use crate::calibration::run_cache::remove_stale_temporaries;
 use crate::calibration::{CalibrateError, Executor, Problem, RunRequest, Stages};
 use crate::io::write_string_atomic;
-pub use calibration_json::{CalibrationJson, PileSize, Provenance};
+pub use calibration_json::{CalibrationJson, Provenance};
 
 /// Folder of the figures inside the output folder.
 pub const FIGURES_DIR: &str = "figures";

@@ -26,7 +26,7 @@ use serde_json::json;
 
 use super::kind::{ConditionKey, Quantity, RigKind, WorldKind};
 pub use super::sphere_bulk::PARTICLES;
-use super::sphere_bulk::{Declared, Values, PARAMETERS};
+use super::sphere_bulk::{Declared, Values, PARAMETERS, UM_PER_MM};
 use crate::arena::OwnedStorage;
 use crate::calibration::{Responses, Rig, RigError, RunRequest};
 use crate::limits::Limits;
@@ -44,8 +44,6 @@ pub const DEFAULT_PARTICLES: u32 = 700;
 pub const BASE_SEED: u64 = 0x5EED_B01C;
 /// Drop heights a diagnosis may propose, mm: from just above the bed to a fall of 0.6 m.
 pub const DROP_HEIGHT_SEARCH_MM: (f64, f64) = (150.0, 600.0);
-/// Micrometres per millimetre (the scenario takes the drop height in µm).
-const UM_PER_MM: f64 = 1.0e3;
 
 /// This rig in the catalogue.
 pub const KIND: RigKind = RigKind {

@@ -23,7 +23,7 @@ use serde_json::json;
 
 use super::kind::{ConditionKey, Quantity, RigKind, WorldKind};
 pub use super::sphere_bulk::PARTICLES;
-use super::sphere_bulk::{Declared, Values, PARAMETERS};
+use super::sphere_bulk::{Declared, Values, PARAMETERS, UM_PER_MM};
 use crate::arena::OwnedStorage;
 use crate::calibration::{Responses, Rig, RigError, RunRequest};
 use crate::limits::Limits;
@@ -47,8 +47,6 @@ pub const SETTLE_TIME_S: f64 = 0.30;
 pub const WINDOW_START_S: f64 = 0.10;
 /// End of the measuring window after opening, s.
 pub const WINDOW_END_S: f64 = 0.30;
-/// Micrometres per millimetre (the scenario takes the orifice in µm).
-const UM_PER_MM: f64 = 1.0e3;
 
 /// This rig in the catalogue.
 pub const KIND: RigKind = RigKind {

@@ -243,14 +243,11 @@ impl<'a> PodBenchRig<'a> {
 /// is simulated from what its specification says, so it can never differ from its cache
 /// entry.
 pub fn parameter_values(spec: &RunSpec) -> BTreeMap<String, f64> {
-    let effects = EFFECTS.iter().filter(|p| {
-        matches!(p.sets.owner, Owner::Pair(pair)
-            if spec.pairs.get(pair).is_some_and(|v| pair_property(v, p.sets.property) != Some(0.0)))
-    });
-    REGISTRY
-        .iter()
+    let always = REGISTRY.iter().map(|p| (p, false));
+    let effects = EFFECTS.iter().map(|p| (p, true));
+    always
         .chain(effects)
-        .filter_map(|p| {
+        .filter_map(|(p, effect)| {
             let value = match p.sets.owner {
                 Owner::Material(m) => spec.materials.get(m).and_then(|mat| match p.sets.property {
                     "poisson" => Some(mat.poisson),
@@ -263,7 +260,8 @@ pub fn parameter_values(spec: &RunSpec) -> BTreeMap<String, f64> {
                     .get(pair)
                     .and_then(|v| pair_property(v, p.sets.property)),
             }?;
-            Some((p.name.to_owned(), value))
+            // An effect at 0 is off: the run without it.
+            (!(effect && value == 0.0)).then(|| (p.name.to_owned(), value))
         })
         .collect()
 }

@@ -29,6 +29,8 @@ use crate::calibration::{ParameterValues, RigError, RunRequest};
 
 /// The particle-count condition of every bulk rig (a count of spheres).
 pub const PARTICLES: &str = "particles";
+/// Micrometres per millimetre: the rigs take lengths in mm, the scenarios in µm.
+pub const UM_PER_MM: f64 = 1.0e3;
 
 /// What a parameter of a sphere-bulk rig sets.
 #[derive(Debug, Clone, Copy, PartialEq)]
