@@ -1,26 +1,75 @@
 //! `arachis plant [--topology FILE]`: generate a plant from its topology and print its
 //! summary as one JSON line (`crate::plant::PlantSummary`): parts by kind, spheres,
 //! bodies, the bond count of every set, the pod–stalk, stalk–stem and stem–leaf counts,
-//! and seed 001's 191 / 201 / 150 beside them. A bad topology is a clear error.
+//! seed 001's 191 / 201 / 150 beside them, and the organ sizes as built. A bad topology is
+//! a clear error.
+//!
+//! `arachis plant --variety FILE [--seed N] [--plants K]`: grow K plants of a variety
+//! (`crate::plant::variety`) from seeds N, N+1, … and print one line per plant, its seed
+//! first. A bad variety file is refused with its path, line and key.
 
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 
+use crate::plant::picture::write_plant_picture;
+use crate::plant::variety::Variety;
 use crate::plant::{generate, PlantModel, Topology};
 
 /// Arguments of `arachis plant`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// Plant topology (TOML, see `arachis::plant`); default: the shipped small plant.
-    #[arg(long, value_name = "FILE")]
+    #[arg(long, value_name = "FILE", conflicts_with = "variety")]
     pub topology: Option<PathBuf>,
+    /// Grow plants of this variety (TOML, see `arachis::plant::variety`) instead.
+    #[arg(long, value_name = "FILE")]
+    pub variety: Option<PathBuf>,
+    /// Seed of the first plant grown from `--variety`.
+    #[arg(long, default_value_t = 1, requires = "variety")]
+    pub seed: u64,
+    /// Write a side view of the (first) plant, SVG.
+    #[arg(long, value_name = "FILE.svg")]
+    pub picture: Option<PathBuf>,
+    /// Plants to grow from `--variety` (seeds N, N+1, …).
+    #[arg(long, default_value_t = 1, requires = "variety", value_parser = clap::value_parser!(u64).range(1..=MAX_PLANTS))]
+    pub plants: u64,
 }
+
+/// Most plants one `arachis plant --variety` call grows.
+const MAX_PLANTS: u64 = 10_000;
 
 /// Runs `arachis plant`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let model = load_plant(args.topology.as_deref())?;
-    println!("{}", serde_json::to_string(&model.summary())?);
+    let Some(path) = args.variety.as_deref() else {
+        let model = load_plant(args.topology.as_deref())?;
+        if let Some(picture) = &args.picture {
+            write_plant_picture(picture, &model, "plant")?;
+        }
+        println!("{}", serde_json::to_string(&model.summary())?);
+        return Ok(());
+    };
+    let variety = Variety::read(path)?;
+    let mut lines = Vec::new();
+    let mut first = None;
+    for seed in (0..args.plants).map(|k| args.seed.wrapping_add(k)) {
+        let (_, model) = variety
+            .grow(seed)
+            .with_context(|| format!("{}: cannot grow plant {seed}", path.display()))?;
+        let mut line = serde_json::json!({ "seed": seed });
+        let summary = serde_json::to_value(model.summary())?;
+        line.as_object_mut()
+            .expect("a JSON object")
+            .extend(summary.as_object().cloned().unwrap_or_default());
+        lines.push(serde_json::to_string(&line)?);
+        first.get_or_insert(model);
+    }
+    // Written only once every plant has grown: a refused plant writes and prints nothing.
+    if let (Some(picture), Some(model)) = (&args.picture, &first) {
+        let title = format!("{}, plant of seed {}", variety.variety.name, args.seed);
+        write_plant_picture(picture, model, &title)?;
+    }
+    println!("{}", lines.join("\n"));
     Ok(())
 }
 

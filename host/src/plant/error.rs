@@ -80,6 +80,28 @@ pub enum PlantError {
     /// The pod shape could not be built or filled with spheres (`crate::shapes`).
     #[error("cannot build the pod from its shape: {0}")]
     PodShape(String),
+    /// Two parts that cannot be grown again (stems) overlap in a grown plant.
+    #[error("the plant of seed {seed} cannot be grown: parts `{}` and `{}` overlap", parts[0], parts[1])]
+    Crowded {
+        /// The plant's seed.
+        seed: u64,
+        /// The two parts.
+        parts: [String; 2],
+    },
+    /// Stalks or leaves still overlap after every regrowth round.
+    #[error("the plant of seed {seed} still has overlapping stalks or leaves after {rounds} regrowths: the variety has more pods than its stems can hold apart")]
+    TooCrowded {
+        /// The plant's seed.
+        seed: u64,
+        /// Rounds tried.
+        rounds: usize,
+    },
+    /// No draw of a stalk reached its depth from any node it may grow from.
+    #[error("no pod stalk of {tries} draws could reach its drawn depth from a node of its stem: make the stalks longer or the pods shallower")]
+    Unreachable {
+        /// Draws tried.
+        tries: usize,
+    },
     /// The core refused the plant (capacity, ranges).
     #[error("the simulation core refused the plant: {0}")]
     Core(String),

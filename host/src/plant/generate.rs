@@ -19,17 +19,20 @@
 
 use std::collections::BTreeMap;
 
+use arachis_core::body::{clump_mass_properties, MassProperties, MassSphere, DEFAULT_MASS_GRID};
 use arachis_core::bond::{BondSetId, BondSetSpec};
 use arachis_core::prelude::*;
+use arachis_core::units::{LENGTH_M_TO_MM as MM_PER_M, MASS_KG_TO_G as GRAMS_PER_KG};
 
 use super::error::PlantError;
 use super::topology::{Dimensions, Kind, Topology};
 use crate::shapes::{fill_with_spheres, FillOptions, FillTarget, PodKind, PodShape, Sphere};
 
 /// Gap between neighbouring spheres at set-up, mm.
-const GAP_MM: f64 = 0.001;
-/// Millimetres per metre.
-const MM_PER_M: f64 = 1000.0;
+pub(crate) const GAP_MM: f64 = 0.001;
+/// Density at which a pod's sphere union is integrated before its mass is scaled to the
+/// stated pod mass, kg/m³ (any positive value gives the same scaled result).
+const REFERENCE_DENSITY_KG_M3: f64 = 1000.0;
 
 /// One sphere of the plant (SI).
 #[derive(Debug, Clone, PartialEq)]
@@ -75,6 +78,8 @@ pub struct PlantModel {
     pub bonds: Vec<PlantBond>,
     /// Bond sets used, by name (from the topology).
     pub sets: BTreeMap<&'static str, BondSetSpec>,
+    /// Mass of each pod, kg, when the topology states it (`dimensions.pod_mass_g`).
+    pub pod_mass_kg: Option<f64>,
 }
 
 /// Where a placed part lies: its sphere indices and unit direction.
@@ -101,6 +106,7 @@ pub fn generate(t: &Topology) -> Result<PlantModel, PlantError> {
         bodies: Vec::new(),
         bonds: Vec::new(),
         sets: BTreeMap::new(),
+        pod_mass_kg: d.pod_mass_g.map(|g| g / GRAMS_PER_KG),
     };
     let pod = pod_filling(d)?;
     let mut placed: BTreeMap<&str, Placed> = BTreeMap::new();
@@ -349,7 +355,32 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 /// Sphere count and radius (mm) of a chain of length `l` and diameter `dia`.
 fn chain(l: f64, dia: f64, over: Option<f64>) -> (usize, f64) {
     let l = over.unwrap_or(l);
-    (((l / dia).round() as usize).max(2), dia / 2.0)
+    (chain_spheres(l, dia), dia / 2.0)
+}
+
+/// Spheres of a chain part of length `length_mm` and diameter `diameter_mm`:
+/// n = max(2, round(L/D)); neighbours lie one pitch D + [`GAP_MM`] apart.
+pub(crate) fn chain_spheres(length_mm: f64, diameter_mm: f64) -> usize {
+    ((length_mm / diameter_mm).round() as usize).max(2)
+}
+
+/// Mass properties of the union of `spheres` with its mass set to `mass_kg`: the union is
+/// integrated at a reference density ([`clump_mass_properties`]) and its mass and moments
+/// scaled by one factor, so the centre of mass and principal axes are the union's own.
+fn scaled_mass(spheres: &[ClumpSphere], mass_kg: f64) -> Result<MassProperties, SetupError> {
+    let union: Vec<MassSphere> = spheres
+        .iter()
+        .map(|s| MassSphere {
+            center_m: s.center_m,
+            radius_m: s.radius_m,
+            density_kg_m3: REFERENCE_DENSITY_KG_M3,
+        })
+        .collect();
+    let mut props = clump_mass_properties(&union, DEFAULT_MASS_GRID)?;
+    let k = mass_kg / props.mass_kg;
+    props.mass_kg = mass_kg;
+    props.principal_inertia_kg_m2 = props.principal_inertia_kg_m2.map(|i| i * k);
+    Ok(props)
 }
 
 impl PlantModel {
@@ -391,13 +422,17 @@ impl PlantModel {
                         material: pod_material,
                     })
                     .collect();
-                world
-                    .add_clump(&ClumpSpec {
-                        spheres: &spheres,
-                        velocity_m_s: [0.0; 3],
-                        angular_velocity_rad_s: [0.0; 3],
-                    })
-                    .map_err(|e| core(&e))?
+                let spec = ClumpSpec {
+                    spheres: &spheres,
+                    velocity_m_s: [0.0; 3],
+                    angular_velocity_rad_s: [0.0; 3],
+                };
+                match self.pod_mass_kg {
+                    None => world.add_clump(&spec),
+                    Some(kg) => scaled_mass(&spheres, kg)
+                        .and_then(|mass| world.add_clump_with_mass(&spec, &mass)),
+                }
+                .map_err(|e| core(&e))?
             } else {
                 let s = &self.spheres[b.spheres[0]];
                 world

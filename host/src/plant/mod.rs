@@ -17,8 +17,11 @@
 
 pub mod error;
 pub mod generate;
+pub mod overlap;
+pub mod picture;
 pub mod summary;
 pub mod topology;
+pub mod variety;
 
 pub use error::PlantError;
 pub use generate::{generate, PlantModel};

@@ -114,6 +114,9 @@ pub struct Dimensions {
     pub leaf_length_mm: f64,
     /// Leaf sphere diameter, mm (assumed 4).
     pub leaf_diameter_mm: f64,
+    /// Mass of each pod, g. When given, every pod clump gets this mass (its inertia scaled
+    /// with it); when not, the mass of its spheres' union at the pod material's density.
+    pub pod_mass_g: Option<f64>,
 }
 
 impl Default for Dimensions {
@@ -131,6 +134,7 @@ impl Default for Dimensions {
             pod_fill_resolution: DEFAULT_POD_FILL_RESOLUTION,
             leaf_length_mm: 40.0,
             leaf_diameter_mm: 4.0,
+            pod_mass_g: None,
         }
     }
 }
@@ -224,6 +228,9 @@ impl Topology {
             PLANT_ORGAN_MM
                 .check(v)
                 .map_err(|reason| PlantError::Implausible { what, reason })?;
+        }
+        if let Some(m) = d.pod_mass_g {
+            positive("dimensions.pod_mass_g", m)?;
         }
         for (what, v, lo, hi, rule) in [
             (
