@@ -27,4 +27,5 @@ pub mod shapes;
 pub mod stats;
 pub mod stepping;
 pub mod study;
+pub mod variety;
 pub mod vtk;

@@ -15,9 +15,9 @@
 use std::path::Path;
 
 use arachis::plant::topology::Kind;
-use arachis::plant::variety::{Spread, Variety, TRUNCATION_SDS};
 use arachis::plant::PlantModel;
 use arachis::shapes::{PodKind, PodShape};
+use arachis::variety::{Spread, Variety, TRUNCATION_SDS};
 
 const HUAYU: &str = include_str!("../../testdata/peanut-plant/variety-huayu.toml");
 const PLANTS: u64 = 400;

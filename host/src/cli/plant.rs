@@ -5,7 +5,7 @@
 //! a clear error.
 //!
 //! `arachis plant --variety FILE [--seed N] [--plants K]`: grow K plants of a variety
-//! (`crate::plant::variety`) from seeds N, N+1, … and print one line per plant, its seed
+//! (`crate::variety`) from seeds N, N+1, … and print one line per plant, its seed
 //! first. A bad variety file is refused with its path, line and key.
 
 use std::path::{Path, PathBuf};
@@ -13,8 +13,8 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 
 use crate::plant::picture::write_plant_picture;
-use crate::plant::variety::Variety;
 use crate::plant::{generate, PlantModel, Topology};
+use crate::variety::Variety;
 
 /// Arguments of `arachis plant`.
 #[derive(Debug, clap::Args)]
@@ -22,7 +22,7 @@ pub struct Args {
     /// Plant topology (TOML, see `arachis::plant`); default: the shipped small plant.
     #[arg(long, value_name = "FILE", conflicts_with = "variety")]
     pub topology: Option<PathBuf>,
-    /// Grow plants of this variety (TOML, see `arachis::plant::variety`) instead.
+    /// Grow plants of this variety (TOML, see `arachis::variety`) instead.
     #[arg(long, value_name = "FILE")]
     pub variety: Option<PathBuf>,
     /// Seed of the first plant grown from `--variety`.

@@ -21,7 +21,6 @@ pub mod overlap;
 pub mod picture;
 pub mod summary;
 pub mod topology;
-pub mod variety;
 
 pub use error::PlantError;
 pub use generate::{generate, PlantModel};

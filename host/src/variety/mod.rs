@@ -12,8 +12,8 @@
 //! (m / mean mass)^(1/3).
 //!
 //! ```
-//! use arachis::plant::variety::Variety;
-//! let text = include_str!("../../../../testdata/peanut-plant/variety-huayu.toml");
+//! use arachis::variety::Variety;
+//! let text = include_str!("../../../testdata/peanut-plant/variety-huayu.toml");
 //! let variety = Variety::from_toml(std::path::Path::new("variety-huayu.toml"), text).unwrap();
 //! let (topology, model) = variety.grow(7).unwrap();
 //! let pods = model.bodies.iter().filter(|b| b.kind == arachis::plant::topology::Kind::Pod);
@@ -33,8 +33,8 @@ use serde::Deserialize;
 use toml::de::DeValue;
 use toml::Spanned;
 
-use super::topology::{BondSet, MAX_POD_SPHERES};
-use super::{PlantModel, Topology};
+use crate::plant::topology::{BondSet, MAX_POD_SPHERES};
+use crate::plant::{PlantError, PlantModel, Topology};
 use crate::plausible::PLANT_ORGAN_MM;
 use crate::study::error::StudyError;
 use crate::study::key_path::KeyPath;
@@ -366,9 +366,9 @@ impl Variety {
     }
 
     /// The plant of `seed`: its topology and the model generated from it
-    /// ([`super::generate`]). Stalks whose pods would overlap another part are grown again
+    /// ([`crate::plant::generate`]). Stalks whose pods would overlap another part are grown again
     /// in other directions (see [`grow`]).
-    pub fn grow(&self, seed: u64) -> Result<(Topology, PlantModel), super::PlantError> {
+    pub fn grow(&self, seed: u64) -> Result<(Topology, PlantModel), PlantError> {
         grow::grow(self, seed)
     }
 }
