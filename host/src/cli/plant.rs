@@ -36,6 +36,14 @@ pub struct Args {
     pub plants: u64,
 }
 
+/// One printed line of `arachis plant --variety`: the seed, then the plant's summary.
+#[derive(serde::Serialize)]
+struct PlantLine {
+    seed: u64,
+    #[serde(flatten)]
+    summary: crate::plant::PlantSummary,
+}
+
 /// Most plants one `arachis plant --variety` call grows.
 const MAX_PLANTS: u64 = 10_000;
 
@@ -56,11 +64,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let (_, model) = variety
             .grow(seed)
             .with_context(|| format!("{}: cannot grow plant {seed}", path.display()))?;
-        let mut line = serde_json::json!({ "seed": seed });
-        let summary = serde_json::to_value(model.summary())?;
-        line.as_object_mut()
-            .expect("a JSON object")
-            .extend(summary.as_object().cloned().unwrap_or_default());
+        let line = PlantLine {
+            seed,
+            summary: model.summary(),
+        };
         lines.push(serde_json::to_string(&line)?);
         first.get_or_insert(model);
     }

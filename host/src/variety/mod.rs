@@ -36,7 +36,7 @@ use toml::Spanned;
 use crate::plant::topology::{BondSet, MAX_POD_SPHERES};
 use crate::plant::{PlantError, PlantModel, Topology};
 use crate::plausible::PLANT_ORGAN_MM;
-use crate::study::error::StudyError;
+use crate::study::error::{StudyError, StudyErrors};
 use crate::study::key_path::KeyPath;
 use crate::study::source::Source;
 
@@ -198,12 +198,11 @@ impl Variety {
         let variety: Variety = source
             .decode(&KeyPath::root(), &root)
             .map_err(|e| VarietyErrors(vec![e]))?;
-        let mut errors = variety.problems(&source);
+        let errors = variety.problems(&source);
         if errors.is_empty() {
             Ok(variety)
         } else {
-            errors.sort_by_key(|e| e.position.unwrap_or((usize::MAX, usize::MAX)));
-            Err(VarietyErrors(errors))
+            Err(VarietyErrors(StudyErrors(errors).sorted().0))
         }
     }
 
