@@ -51,4 +51,4 @@ liggghts_end=$(date +%s.%N)
 awk -v a="$start" -v b="$liggghts_end" 'BEGIN { printf "LIGGGHTS: 10 runs in %.1f s\n", b - a }' >&2
 
 ARACHIS_LIGGGHTS_RESULTS="$work" nice -n 10 cargo test --release -q -p arachis-core \
-    --test cross_check_liggghts -- --ignored --nocapture
+    --test scenarios cross_check_liggghts:: -- --ignored --nocapture

@@ -23,4 +23,5 @@ else
 fi
 cargo test --release --workspace
 cargo test -p arachis-core
-cargo test --release -p arachis-core --features float-estimate --lib --test digest_scenarios
+cargo test --release -p arachis-core --features float-estimate --lib
+cargo test --release -p arachis-core --features float-estimate --test scenarios digest_scenarios::

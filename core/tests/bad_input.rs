@@ -1,7 +1,7 @@
 //! Bad input: each invalid set-up is a typed error with a clear message; a proptest drives
 //! random valid and invalid inputs through set-up and a few steps and never sees a panic.
 
-mod common;
+use crate::common;
 use arachis_core::error::CapacityKind;
 use arachis_core::prelude::*;
 use common::*;

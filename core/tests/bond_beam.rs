@@ -20,7 +20,7 @@
 //! break step bracket the predicted failure load. A free two-sphere oscillator checks that the
 //! loads reach the bodies with the right sign: its axial period is 2π√(m*/(Kn·A)).
 
-mod common;
+use crate::common;
 
 use arachis_core::bond::{
     Bond, BondBreak, BondError, BondSetSpec, BondStorage, BreakCriterion, FormationRule,

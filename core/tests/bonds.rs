@@ -2,7 +2,7 @@
 //! the bond breaks; scheduled formation happens at its time; a full break log counts what it
 //! cannot store; capacity and id errors are typed; the f64 reference path runs the same code.
 
-mod common;
+use crate::common;
 
 use arachis_core::bond::{
     Bond, BondBreak, BondError, BondSetSpec, BondStorage, BreakCriterion, FormationRule,

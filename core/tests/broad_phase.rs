@@ -1,7 +1,7 @@
 //! The cell-grid broad phase finds exactly the overlapping pairs a brute-force O(N²) search
 //! finds, with a generous grid and with a grid so small that cells must be merged.
 
-mod common;
+use crate::common;
 use arachis_core::prelude::*;
 use common::*;
 

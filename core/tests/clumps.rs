@@ -5,7 +5,7 @@
 //! −ω̂ (not as an equal-and-opposite pair), so it does not conserve angular momentum (with
 //! μr = 0.2 this run loses 33 % of L).
 
-mod common;
+use crate::common;
 use arachis_core::num::Vec3;
 use arachis_core::prelude::*;
 use common::*;

@@ -49,9 +49,9 @@
 //! time of 0.1 s).
 //!
 //! Run: `scripts/cross-check-contacts.sh`, or by hand
-//! `ARACHIS_LIGGGHTS_RESULTS=dir cargo test --release -p arachis-core --test cross_check_liggghts -- --ignored --nocapture`.
+//! `ARACHIS_LIGGGHTS_RESULTS=dir cargo test --release -p arachis-core --test scenarios cross_check_liggghts:: -- --ignored --nocapture`.
 
-mod common;
+use crate::common;
 use arachis_core::prelude::*;
 use common::Owned;
 use std::collections::HashMap;

@@ -8,14 +8,14 @@
 //! of a scenario, regenerate them deliberately with
 //!
 //! ```sh
-//! ARACHIS_BLESS=1 cargo test -p arachis-core --test digest_scenarios
+//! ARACHIS_BLESS=1 cargo test -p arachis-core --test scenarios digest_scenarios::
 //! ```
 //!
 //! and say why in the commit message. A mismatch prints both digests, this command, and the
 //! path of a per-body dump of the new state (diff it against a dump of the old build to find
 //! the first body that diverged).
 
-mod common;
+use crate::common;
 use arachis_core::bond::{Bond, BondBreak, BondStorage};
 use arachis_core::prelude::*;
 use arachis_core::scenario::bulk_density::{slab_bulk_density_kg_m3, BulkDensity};
@@ -29,7 +29,8 @@ use std::path::PathBuf;
 /// Environment variable that makes the golden checks rewrite the files instead.
 const BLESS_VAR: &str = "ARACHIS_BLESS";
 /// The command that regenerates the goldens.
-const BLESS_COMMAND: &str = "ARACHIS_BLESS=1 cargo test -p arachis-core --test digest_scenarios";
+const BLESS_COMMAND: &str =
+    "ARACHIS_BLESS=1 cargo test -p arachis-core --test scenarios digest_scenarios::";
 
 /// Pour: steps before the digest. Early in the DESIGN §8 pour (0.1 s), when the lowest
 /// spheres have reached the floor and pile up, so the history is well populated, while a

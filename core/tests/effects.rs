@@ -7,7 +7,7 @@
 //!   (tolerance 0.05 %);
 //! - with every effect set to its off value, the state digest equals the plain law's.
 
-mod common;
+use crate::common;
 use arachis_core::effects::EffectSpec;
 use arachis_core::prelude::*;
 use common::*;

@@ -10,7 +10,7 @@
 //!   it rests at the analytic JKR overlap (tolerance 1 % of |δ|); it stays attached at
 //!   0.99·F_c and falls off at 1.01·F_c, F_c = 1.5πΓR* (force-controlled pull-off).
 
-mod common;
+use crate::common;
 use arachis_core::effects::EffectSpec;
 use arachis_core::prelude::*;
 use common::*;

@@ -6,7 +6,7 @@
 //! positions; the energy at step n uses x_n and v_n = (v_{n−½} + v_{n+½})/2, the velocity-Verlet
 //! synchronisation.
 
-mod common;
+use crate::common;
 use arachis_core::prelude::*;
 use common::*;
 

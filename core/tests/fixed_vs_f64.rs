@@ -31,7 +31,7 @@
 //! ignored in debug builds, run by `scripts/test-all.sh` in release. `--nocapture` shows the
 //! table.
 
-mod common;
+use crate::common;
 use arachis_core::prelude::*;
 use arachis_core::scenario::bench_bed::{
     DEFAULT_SEED, DESIGN_SETTLE_STEPS, SETTLED_KINETIC_ENERGY_J,

@@ -2,7 +2,7 @@
 //! sphere–sphere. Peak force, maximum overlap and contact duration within 1 % of Hertz theory,
 //! in fixed point and f64.
 
-mod common;
+use crate::common;
 use arachis_core::prelude::*;
 use common::*;
 

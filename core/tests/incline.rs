@@ -2,7 +2,7 @@
 //! incline of angle θ). Below atan(μs) it stays put; above, it accelerates down the slope at
 //! g(sin θ − μs cos θ) within 2 %.
 
-mod common;
+use crate::common;
 use arachis_core::prelude::*;
 use common::*;
 

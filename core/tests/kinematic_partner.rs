@@ -9,7 +9,7 @@
 //! equal pod sphere, off a fixed pod sphere of another size (the general branch) and off a
 //! pod plane at the same ratio; within 2e-5 (the contact is resolved in 4 000 steps).
 
-mod common;
+use crate::common;
 use arachis_core::prelude::*;
 use common::*;
 

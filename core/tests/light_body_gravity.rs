@@ -8,7 +8,7 @@
 //! 2⁻³² mm/ms grid (≤ ½ unit), so |Δv| ≤ N/2 units plus the quantisation of g and dt
 //! (relative 2⁻³² / g_internal and 2⁻³² / dt_internal); the tolerance below is that bound.
 
-mod common;
+use crate::common;
 use arachis_core::prelude::*;
 use common::*;
 

@@ -10,7 +10,7 @@
 //! Tolerance 1e-6: a unit normal rounded to Q32.32 leaks ≈ 1e-9; the unnormalised normal of
 //! F4 leaked ≈ 1e-2 at |d| = 0.13 µm.
 
-mod common;
+use crate::common;
 use arachis_core::prelude::*;
 use common::*;
 

@@ -5,7 +5,7 @@
 //! - fast walls of every shape sweep through a cloud of moving spheres, and every step the
 //!   world's live wall contacts equal a brute-force test of every sphere against every wall.
 
-mod common;
+use crate::common;
 use arachis_core::contact::history::wall_key;
 use arachis_core::contact::WALL_PARTNER_FLAG;
 use arachis_core::prelude::*;

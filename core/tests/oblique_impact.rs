@@ -4,7 +4,7 @@
 //! (measured from the same run), since the formula is an impulse balance: ∫Ft = μ∫Fn =
 //! μ·m·(1+e)·vn.
 
-mod common;
+use crate::common;
 use arachis_core::prelude::*;
 use common::*;
 

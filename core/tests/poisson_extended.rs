@@ -3,7 +3,7 @@
 //! ν ∈ (−1, 1), and the contact then follows Hertz with E* = E/(1 − ν²) — checked by the
 //! static overlap of a resting pod sphere (DESIGN §2, seed 000 eq. (1)).
 
-mod common;
+use crate::common;
 use arachis_core::prelude::*;
 use common::*;
 

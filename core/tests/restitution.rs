@@ -4,9 +4,9 @@
 //! The core clips the total normal force at ≥ 0 (no attraction), so the effective e differs
 //! from the input e (Thornton, Cummins & Cleary 2013). The measured ratio must agree within
 //! 0.5 % with an independent adaptive RK45 integration of the same single-contact equation
-//! (tests/common). `cargo test --test restitution -- --nocapture` prints the table.
+//! (tests/common). `cargo test --test scenarios restitution:: -- --nocapture` prints the table.
 
-mod common;
+use crate::common;
 use arachis_core::prelude::*;
 use common::*;
 

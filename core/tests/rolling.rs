@@ -2,7 +2,7 @@
 //! decelerates at μr·g/1.4 and stops after 0.7·v0²/(μr·g) (DESIGN §7); within 2 %.
 //! Also checks that the torque never reverses ω: once stopped, the sphere stays stopped.
 
-mod common;
+use crate::common;
 use arachis_core::prelude::*;
 use common::*;
 

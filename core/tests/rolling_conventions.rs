@@ -20,7 +20,7 @@
 //! EDEM's; and two free spheres colliding with unequal spins keep their total angular momentum
 //! in LIGGGHTS' convention, whose torques are equal and opposite, but not in EDEM's.
 
-mod common;
+use crate::common;
 use arachis_core::effects::EffectSpec;
 use arachis_core::error::CapacityKind;
 use arachis_core::prelude::*;

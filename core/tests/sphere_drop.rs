@@ -1,7 +1,7 @@
 //! A pod sphere dropped on a steel plane falls freely, bounces, and comes to rest at the Hertz
 //! static overlap; fixed point and f64 agree.
 
-mod common;
+use crate::common;
 use arachis_core::prelude::*;
 use common::*;
 

@@ -8,7 +8,7 @@
 //! F_t = m·g·sin θ, F_n = m·g·cos θ the sphere rests at θ = atan μr from the bottom,
 //! whatever the drum's speed, as long as it does not slide (μs > μr).
 
-mod common;
+use crate::common;
 
 use arachis_core::prelude::*;
 use common::{pod_steel_world, Owned};

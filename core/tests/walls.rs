@@ -1,7 +1,7 @@
 //! Walls: cylinder containment, a moving plane pushing a sphere, and a finite cylinder lifted
 //! off a sphere (the repose-test motion) releasing it.
 
-mod common;
+use crate::common;
 use arachis_core::prelude::*;
 use common::*;
 

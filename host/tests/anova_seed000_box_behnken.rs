@@ -10,7 +10,7 @@
 //! on a rounding boundary and were rounded by the seed: x3 −0.535 (printed −0.53), x3x5
 //! 0.0775 (printed 0.078) and x5² −0.0085 (printed −0.009); they are within the tolerance.
 
-mod anova_support;
+use crate::anova_support;
 
 use anova_support::{analyze_seed, assert_coefficient, assert_printed, assert_term_rows};
 use arachis::stats::{Anova, FactorLevels, ModelOrder};

@@ -7,7 +7,7 @@
 //!
 //! Tolerance: half a unit in the last printed digit (see `anova_support::assert_printed`).
 
-mod anova_support;
+use crate::anova_support;
 
 use anova_support::{analyze_seed, assert_printed, assert_term_rows};
 use arachis::stats::{Anova, FactorLevels, ModelOrder};

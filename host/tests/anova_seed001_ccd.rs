@@ -12,7 +12,7 @@
 //!
 //! Tolerance: half a unit in the last printed digit.
 
-mod anova_support;
+use crate::anova_support;
 
 use anova_support::{analyze_seed, assert_coefficient, assert_printed, assert_term_rows};
 use arachis::stats::{Anova, FactorLevels, ModelOrder};

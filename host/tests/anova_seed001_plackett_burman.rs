@@ -10,7 +10,7 @@
 //! Tolerance: half a unit in the last printed digit. The intercept 8.125 (the factorial
 //! mean, 97.50/12) lies exactly on the rounding boundary of the printed 8.13.
 
-mod anova_support;
+use crate::anova_support;
 
 use anova_support::{
     analyze_seed, assert_coefficient, assert_printed, assert_term_rows, half_unit, seed_table_path,

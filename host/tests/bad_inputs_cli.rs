@@ -4,7 +4,7 @@
 //! the fault) in a message a person can read (no panic, no debug dump, long values cut, no
 //! line twice), and leaves no file behind in the folder it was given.
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::{arachis_at_root, REPO_ROOT};
 use serde::Deserialize;
 

@@ -6,7 +6,7 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::arachis;
 
 /// A restitution calibration from a 0.2 m drop (three measured rebound ratios).

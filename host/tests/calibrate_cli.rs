@@ -5,7 +5,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::{arachis_at_root as arachis, REPO_ROOT as ROOT};
 const STUDY: &str = "testdata/peanut-pods-saline/study.toml";
 

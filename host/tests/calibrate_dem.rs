@@ -18,7 +18,7 @@ use arachis::rigs::pod_bench::{parameter_values, run_pod_test, PodBenchRig, PILE
 use arachis::rigs::pod_world::{ModeName, RunOptions};
 use arachis::rigs::repose_cylinder::TEST as REPOSE;
 
-mod quick_pile_support;
+use crate::quick_pile_support;
 use quick_pile_support::test_pile_study;
 
 #[test]

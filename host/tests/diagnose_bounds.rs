@@ -8,7 +8,7 @@
 //! `diagnose` and `fit` with "restitution = 1.01 must be in (0, 1]" (the central difference
 //! stepped past 1).
 
-mod diagnose_support;
+use crate::diagnose_support;
 use arachis::diagnose::fit::FitResult;
 use arachis::diagnose::params::{value, Catalogue};
 use diagnose_support::*;

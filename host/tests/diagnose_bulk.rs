@@ -10,7 +10,7 @@
 //! `testdata/diagnosis-bulk/runs/`, so this test replays them in milliseconds and fails if any
 //! would have to be simulated again.
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::replay;
 
 const MEASURED: &str = "testdata/diagnosis-bulk/measured.toml";

@@ -11,7 +11,7 @@ use arachis::diagnose::sensitivity::predict;
 use arachis::rigs::pull_off::{PullOffRig, DETACHMENT_FORCE};
 use arachis::study::Study;
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::arachis;
 
 /// Seed 001's study with four replicated pulls instead of its printed force, beside a copy

@@ -4,7 +4,7 @@
 
 use std::process::Output;
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::{arachis_at_root as arachis, file_stamps};
 
 fn ok(out: &Output) -> String {

@@ -9,7 +9,7 @@
 //! and a 2-SE interval misses the hidden value in ≈ 5 % of seeds. Asserted: ≥ 90 % of seeds
 //! in the RMS band and ≥ 85 % within 2 SE; the measured rates are printed.
 
-mod diagnose_support;
+use crate::diagnose_support;
 use diagnose_support::*;
 
 #[test]

@@ -2,7 +2,7 @@
 //! sampling variation): hidden SJKR cohesion (3.2e3 J/m³, 3.2σ at the lightest load) in the
 //! press experiment, 50 seeds. A separate file so each test binary stays near a minute in debug.
 
-mod diagnose_support;
+use crate::diagnose_support;
 use diagnose_support::*;
 
 #[test]

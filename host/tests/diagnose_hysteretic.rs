@@ -4,9 +4,9 @@
 //! hidden a missing effect is claimed in ≤ 10 % of seeds. The tutorial study itself has no
 //! unload experiment; there hysteresis only shows as a restitution change, which the
 //! calibrated e absorbs.
-//! `cargo test -p arachis --test diagnose_hysteretic -- --nocapture` prints the rates.
+//! `cargo test -p arachis --test scenarios diagnose_hysteretic:: -- --nocapture` prints the rates.
 
-mod diagnose_support;
+use crate::diagnose_support;
 use arachis::study::diagnosis::DiagnosisSection;
 use diagnose_support::*;
 

@@ -5,7 +5,7 @@
 //! prints the identifiable fractions of the full tutorial design (hysteresis needs an unload
 //! experiment to be identifiable).
 
-mod diagnose_support;
+use crate::diagnose_support;
 use arachis::diagnose::score::Status;
 use diagnose_support::*;
 

@@ -20,7 +20,7 @@
 //! --cohesion-j-m3, 2026-11-27). The fit reports that as a standard error far above any
 //! plausible k, and the test asserts only that its estimate stays in its interval.
 
-mod diagnose_support;
+use crate::diagnose_support;
 use std::path::{Path, PathBuf};
 
 use arachis::diagnose::residuals::lack_of_fit;

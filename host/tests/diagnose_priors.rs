@@ -5,7 +5,7 @@
 //!
 //! Data: the tutorial template (truth e = 0.5), ten noise seeds, bench e = 0.5 ± 0.01.
 
-mod diagnose_support;
+use crate::diagnose_support;
 use arachis::study::diagnosis::Prior;
 use diagnose_support::*;
 

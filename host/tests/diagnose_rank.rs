@@ -2,10 +2,10 @@
 //! condition), `diagnose` ranks the hidden effect first in ≥ 90 % of 50 seeds; with no hidden
 //! effect it claims a missing effect in ≤ 10 % of seeds. The simulations of each case run
 //! once; only the measurement noise changes with the seed (the ranking itself is recomputed
-//! for every seed). `cargo test -p arachis --test diagnose_rank -- --nocapture` prints the
+//! for every seed). `cargo test -p arachis --test scenarios diagnose_rank:: -- --nocapture` prints the
 //! rates.
 
-mod diagnose_support;
+use crate::diagnose_support;
 use diagnose_support::*;
 
 fn rank_first_rate(name: &str, value: f64) -> f64 {

@@ -10,7 +10,7 @@
 //! steep, no effect can be tested with one angle at one condition, and every finite
 //! difference is lost in the scatter of the placements, which the tool says.
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::replay;
 
 const STUDY: &str = "testdata/diagnosis-seed000/study.toml";

@@ -6,7 +6,7 @@ use std::process::Output;
 
 use arachis::io::CsvTable;
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::arachis;
 
 fn design_to_file(dir: &Path, name: &str, args: &[&str]) -> (PathBuf, Output) {

@@ -12,7 +12,7 @@ use arachis::rigs::pod_world::{Experiment, ModeName, ObservationDetails, RunOpti
 use arachis::study::Study;
 use serde_json::Value;
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::arachis;
 
 fn seed_study() -> PathBuf {

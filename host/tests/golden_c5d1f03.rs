@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::{arachis_at_root as arachis, REPO_ROOT};
 
 /// A committed reference file.

@@ -13,7 +13,7 @@ use arachis_core::prelude::Fx;
 use serde_json::Value;
 use statrs::distribution::{ContinuousCDF, StudentsT};
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::{arachis, file_stamps};
 
 const SMALL: &str = include_str!("../../testdata/peanut-plant/topology-small.toml");

@@ -2,7 +2,7 @@
 //! study: it says it is an alias, writes `calibrate`'s report files and the summary line,
 //! and refuses bad input with clear errors (exit status 2, no report written).
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::arachis;
 
 #[test]

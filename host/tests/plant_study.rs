@@ -10,7 +10,7 @@ use std::process::Output;
 
 use arachis::study::Study;
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::arachis;
 
 fn study_dir() -> PathBuf {

@@ -12,7 +12,7 @@ use arachis::rigs::pod_world::setup::RunInputs;
 use arachis::rigs::pod_world::{Experiment, ModeName, ParameterValues, TemplateCache};
 use arachis::study::Study;
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::{arachis_at_root as arachis, REPO_ROOT};
 
 const STUDY: &str = "testdata/peanut-pods-saline/study.toml";

@@ -8,7 +8,7 @@ use std::path::Path;
 
 use serde_json::Value;
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::arachis;
 
 /// Spheres in the test pour.

@@ -4,7 +4,7 @@
 
 use serde_json::Value;
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::arachis;
 
 /// Relative tolerance of the detachment force against σc·A of the junction (axial pull, pure

@@ -7,7 +7,7 @@
 //! other commands write no file: `lab` without `--svg`, `doe analyze`/`optimize`, `study`,
 //! `diagnose`, `plant` print to standard output.)
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::{arachis_at_root, REPO_ROOT};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

@@ -1,7 +1,7 @@
 //! Bad photographs are refused with a message naming the file and saying what is wrong;
 //! never a panic.
 
-mod repose_support;
+use crate::repose_support;
 
 use std::path::{Path, PathBuf};
 

@@ -6,7 +6,7 @@
 //! checks the committed file against it, and rewrites it when run with
 //! `ARACHIS_REGENERATE_REPOSE_PNG=1`.
 
-mod repose_support;
+use crate::repose_support;
 
 use std::path::PathBuf;
 

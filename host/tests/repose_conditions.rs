@@ -11,7 +11,7 @@ use arachis::rigs::pod_world::{Experiment, ModeName, ParameterValues, TemplateCa
 use arachis::rigs::repose_cylinder::{Layout, CYLINDER_DIAMETER, KIND, LIFT_SPEED};
 use arachis::study::Study;
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::REPO_ROOT;
 
 const STUDY: &str = "testdata/peanut-pods-saline/study.toml";

@@ -31,7 +31,7 @@ use arachis::rigs::pod_world::*;
 use arachis::study::Experiment as ExperimentKind;
 use rayon::prelude::*;
 
-mod quick_pile_support;
+use crate::quick_pile_support;
 use quick_pile_support::test_pile_study;
 
 /// Placement seeds (paired across levels).

@@ -2,7 +2,7 @@
 //! photograph. Spheres packed under a cone of known angle are seen from four azimuths;
 //! the measured angle must be close to the cone's.
 
-mod repose_support;
+use crate::repose_support;
 
 use arachis::repose::overlay::overlay_svg;
 use arachis::repose::{

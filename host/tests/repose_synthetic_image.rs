@@ -2,9 +2,9 @@
 //! within 0.5°". Piles of known flank angles are drawn (anti-aliased or jagged, with grey
 //! noise, rounded apex, flat top, light or dark), written as PNG or JPEG, and measured by
 //! `measure_photo` exactly as a photograph is. Each test prints its achieved error
-//! (`cargo test -p arachis --test repose_synthetic_image -- --nocapture`).
+//! (`cargo test -p arachis --test scenarios repose_synthetic_image:: -- --nocapture`).
 
-mod repose_support;
+use crate::repose_support;
 
 use std::path::PathBuf;
 

@@ -14,7 +14,7 @@ use arachis::rigs::kind::RigOptions;
 use arachis::rigs::pod_world::ModeName;
 use arachis::study::Study;
 
-mod quick_pile_support;
+use crate::quick_pile_support;
 use quick_pile_support::test_pile_study;
 
 fn root(path: &str) -> String {

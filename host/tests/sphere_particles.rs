@@ -14,7 +14,7 @@ use arachis::study::Study;
 use arachis_core::scenario::SplitMix64;
 use serde_json::Value;
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::arachis;
 
 /// The shipped seed-000 study.

@@ -6,7 +6,7 @@ use std::process::Output;
 
 use serde_json::Value;
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::arachis;
 
 fn seed_table(file: &str) -> PathBuf {

@@ -1,6 +1,6 @@
 //! `arachis study check` on the shipped study and on a bad one, through the real binary.
 
-mod cli_support;
+use crate::cli_support;
 use cli_support::arachis_at_root as arachis;
 
 #[test]

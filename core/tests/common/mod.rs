@@ -1,5 +1,4 @@
 //! Test support: owned storage and small world builders.
-#![allow(dead_code)]
 
 use arachis_core::owned::OwnedStorage;
 use arachis_core::prelude::*;

@@ -1,8 +1,6 @@
 //! Shared helpers for the seed ANOVA tests: read a seed table, analyse it, and compare a
 //! computed number with the digits a seed prints.
 
-#![allow(dead_code)] // each test binary uses a different subset
-
 use std::path::PathBuf;
 
 use arachis::io::CsvTable;

@@ -1,5 +1,4 @@
 //! Runs the `arachis` binary the way the CLI tests need it.
-#![allow(dead_code)]
 
 use std::process::{Command, Output};
 

@@ -1,7 +1,6 @@
 //! Shared set-up of the diagnosis tests: the tutorial template (three cheap experiments, six
 //! conditions each, four replicates), the deterministic simulations computed once per case,
 //! and the noise varied per seed through the same `synth::add_noise` the CLI uses.
-#![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
 

@@ -1,7 +1,6 @@
 //! The cheap DEM pile the repose tests run: the shipped study's quick mode set to
 //! [`TEST_PODS`] pods of [`TEST_SPHERES_PER_POD`] spheres (the shipped quick mode fills each
 //! pod with 6), about 11–15 CPU-s a pile in release.
-#![allow(dead_code)]
 
 use std::path::Path;
 

@@ -2,7 +2,6 @@
 //! from an exact profile (triangle or trapezoid, optionally with a rounded apex), with
 //! anti-aliased or jagged edges and optional grey-level noise, and sphere piles packed
 //! under a cone of known angle.
-#![allow(dead_code)]
 
 use arachis::repose::Sphere;
 use image::GrayImage;
