@@ -12,6 +12,7 @@ pub mod count_limits;
 pub mod diagnose;
 pub mod doe;
 pub mod export;
+pub mod field;
 pub mod harvest;
 pub mod io;
 pub mod lab;

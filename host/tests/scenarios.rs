@@ -48,6 +48,7 @@ mod doe_seed_designs;
 mod drum;
 mod experiments_rigs;
 mod export_liggghts;
+mod field;
 mod golden_c5d1f03;
 mod harvest;
 mod hopper;

@@ -8,6 +8,7 @@ pub mod compare;
 pub mod diagnose;
 pub mod doe;
 pub mod export;
+pub mod field;
 pub mod fit;
 pub mod harvest;
 pub mod lab;
@@ -77,6 +78,8 @@ pub enum Command {
     PlantCalibrate(plant_calibrate::Args),
     /// Generate a plant from its topology and print its parts and bond-set counts.
     Plant(plant::Args),
+    /// Lay out a field (plants of a variety in ridge rows, pods in a soil bed) and step it.
+    Field(field::Args),
     /// Virtual harvest: plants through a toothed picking drum; loss rate and t-test against
     /// the field (seed 001 Table 12).
     Harvest(harvest::Args),
@@ -108,6 +111,7 @@ impl Cli {
             Command::PlantCalibrate(args) => plant_calibrate::run(args),
             Command::Harvest(args) => harvest::run(args),
             Command::Plant(args) => plant::run(args),
+            Command::Field(args) => field::run(args),
             Command::Export(target) => export::run(target),
         }
     }

@@ -404,10 +404,42 @@ impl PlantModel {
         plant_material: MaterialId,
         pod_material: MaterialId,
     ) -> Result<BodyId, PlantError> {
+        let sets = self.add_bond_sets(world)?;
+        self.load_sharing_sets(world, plant_material, pod_material, &sets)
+    }
+
+    /// Adds the plant's bond sets to `world`, by name (plants of one variety share them: a
+    /// world holds at most 16 sets).
+    pub fn add_bond_sets<S: Scalar>(
+        &self,
+        world: &mut World<'_, S>,
+    ) -> Result<BTreeMap<&'static str, BondSetId>, PlantError> {
+        self.sets
+            .iter()
+            .map(|(&name, spec)| {
+                world
+                    .add_bond_set(spec)
+                    .map(|id| (name, id))
+                    .map_err(|e| PlantError::Core(e.to_string()))
+            })
+            .collect()
+    }
+
+    /// As [`PlantModel::load_into`], with bond sets already in the world (`sets`, by name,
+    /// from [`PlantModel::add_bond_sets`] of a plant with the same sets).
+    pub fn load_sharing_sets<S: Scalar>(
+        &self,
+        world: &mut World<'_, S>,
+        plant_material: MaterialId,
+        pod_material: MaterialId,
+        sets: &BTreeMap<&'static str, BondSetId>,
+    ) -> Result<BodyId, PlantError> {
         let core = |e: &dyn std::fmt::Display| PlantError::Core(e.to_string());
-        let mut ids: BTreeMap<&str, BondSetId> = BTreeMap::new();
-        for (name, spec) in &self.sets {
-            ids.insert(name, world.add_bond_set(spec).map_err(|e| core(&e))?);
+        let ids = sets;
+        if let Some(missing) = self.sets.keys().find(|name| !ids.contains_key(*name)) {
+            return Err(PlantError::Core(format!(
+                "bond set {missing} is not in the world"
+            )));
         }
         let first_sphere = world.spheres().len();
         let mut root = None;

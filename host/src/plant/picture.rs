@@ -27,8 +27,8 @@ const FRAME_PX: u32 = 110;
 /// Empty room round the plant, mm.
 const ROOM_MM: f64 = 20.0;
 
-/// One sphere as drawn: x and z of its centre, its radius (mm), its organ.
-type Disc = (f64, f64, f64, Kind);
+/// One sphere as drawn: the two coordinates of its centre, its radius (mm), its organ.
+pub(crate) type Disc = (f64, f64, f64, Kind);
 
 /// The colour of an organ.
 fn colour(kind: Kind) -> RGBColor {
@@ -42,9 +42,6 @@ fn colour(kind: Kind) -> RGBColor {
 
 /// Writes the side view of `plant` to `path` (must end in `.svg`).
 pub fn write_plant_picture(path: &Path, plant: &PlantModel, title: &str) -> anyhow::Result<()> {
-    if path.extension().and_then(|e| e.to_str()) != Some("svg") {
-        bail!("picture {}: the file name must end in .svg", path.display());
-    }
     let discs: Vec<Disc> = plant
         .spheres
         .iter()
@@ -53,13 +50,46 @@ pub fn write_plant_picture(path: &Path, plant: &PlantModel, title: &str) -> anyh
             (x, z, s.radius_m * LENGTH_M_TO_MM, plant.bodies[s.body].kind)
         })
         .collect();
+    let view = View {
+        x_desc: "x (mm)",
+        y_desc: "height above the soil surface (mm)",
+        soil_surface: true,
+    };
+    write_disc_picture(path, &discs, title, &view)
+}
+
+/// How a picture of discs is labelled.
+pub(crate) struct View {
+    /// Label of the horizontal axis.
+    pub x_desc: &'static str,
+    /// Label of the vertical axis.
+    pub y_desc: &'static str,
+    /// Draw the soil surface (vertical coordinate 0) as a line.
+    pub soil_surface: bool,
+}
+
+/// Writes `discs` (centre and radius in mm, organ) at equal scales to `path` (must end in
+/// `.svg`), with `title` and the axes of `view`.
+pub(crate) fn write_disc_picture(
+    path: &Path,
+    discs: &[Disc],
+    title: &str,
+    view: &View,
+) -> anyhow::Result<()> {
+    if path.extension().and_then(|e| e.to_str()) != Some("svg") {
+        bail!("picture {}: the file name must end in .svg", path.display());
+    }
     if discs.is_empty() {
-        bail!("the plant has no sphere to draw");
+        bail!("there is no sphere to draw");
     }
     let lowest = |pick: &dyn Fn(&Disc) -> f64| discs.iter().map(pick).fold(f64::INFINITY, f64::min);
     let x0 = lowest(&|d| d.0 - d.2) - ROOM_MM;
     let x1 = -lowest(&|d| -(d.0 + d.2)) + ROOM_MM;
-    let z0 = lowest(&|d| d.1 - d.2).min(0.0) - ROOM_MM;
+    let z0 = if view.soil_surface {
+        lowest(&|d| d.1 - d.2).min(0.0)
+    } else {
+        lowest(&|d| d.1 - d.2)
+    } - ROOM_MM;
     let z1 = -lowest(&|d| -(d.1 + d.2)) + ROOM_MM;
     let plot_h = (f64::from(WIDTH_PX) * (z1 - z0) / (x1 - x0)) as u32;
     let size = (WIDTH_PX + FRAME_PX, plot_h.max(100) + FRAME_PX);
@@ -79,16 +109,18 @@ pub fn write_plant_picture(path: &Path, plant: &PlantModel, title: &str) -> anyh
         chart
             .configure_mesh()
             .disable_mesh()
-            .x_desc("x (mm)")
-            .y_desc("height above the soil surface (mm)")
+            .x_desc(view.x_desc)
+            .y_desc(view.y_desc)
             .draw()
             .map_err(err)?;
-        chart
-            .draw_series(LineSeries::new(
-                [(x0, 0.0), (x1, 0.0)],
-                RGBColor(120, 80, 40),
-            ))
-            .map_err(err)?;
+        if view.soil_surface {
+            chart
+                .draw_series(LineSeries::new(
+                    [(x0, 0.0), (x1, 0.0)],
+                    RGBColor(120, 80, 40),
+                ))
+                .map_err(err)?;
+        }
         chart
             .draw_series(discs.iter().map(|&(x, z, r, kind)| {
                 let radius_px = ((r * px_per_mm).round() as i32).max(1);

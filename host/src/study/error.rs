@@ -73,3 +73,20 @@ impl fmt::Display for StudyErrors {
 }
 
 impl std::error::Error for StudyErrors {}
+
+/// Writes "`what` rejected before `before`: n errors" and each error on its own line: the
+/// message of every input file that is checked whole (variety and field files).
+pub(crate) fn write_rejected(
+    f: &mut fmt::Formatter<'_>,
+    what: &str,
+    before: &str,
+    errors: &[StudyError],
+) -> fmt::Result {
+    let n = errors.len();
+    let noun = if n == 1 { "error" } else { "errors" };
+    write!(f, "{what} rejected before {before}: {n} {noun}")?;
+    for e in errors {
+        write!(f, "\n  {e}")?;
+    }
+    Ok(())
+}

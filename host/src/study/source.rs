@@ -14,7 +14,7 @@ use serde::de::DeserializeOwned;
 use toml::de::{DeTable, DeValue, ValueDeserializer};
 use toml::Spanned;
 
-use super::error::StudyError;
+use super::error::{StudyError, StudyErrors};
 use super::key_path::{KeyPath, Segment};
 use crate::nearest_name::nearest_name;
 
@@ -229,4 +229,46 @@ fn explain_serde(message: &str) -> String {
         .replace("expected f64", "expected a number")
         .replace("expected u32", "expected a whole number ≥ 0")
         .replace("expected u64", "expected a whole number ≥ 0")
+}
+
+/// Decodes the whole of `text` (the file at `path`) as a `T`, then checks it with
+/// `problems`: every error is positioned and they come sorted by position. For input files
+/// that are read whole (variety and field files).
+pub(crate) fn decode_checked<T: DeserializeOwned>(
+    path: &Path,
+    text: &str,
+    problems: impl FnOnce(&T, &Source<'_>) -> Vec<StudyError>,
+) -> Result<T, Vec<StudyError>> {
+    let source = Source::parse(path, text)?;
+    let root = Spanned::new(
+        source.doc.span(),
+        DeValue::Table(source.doc.get_ref().clone()),
+    );
+    let value: T = source
+        .decode(&KeyPath::root(), &root)
+        .map_err(|e| vec![e])?;
+    let errors = problems(&value, &source);
+    if errors.is_empty() {
+        Ok(value)
+    } else {
+        Err(StudyErrors(errors).sorted().0)
+    }
+}
+
+/// Reads the file at `path` and [`decode_checked`]s it; `what` names the kind of file when it
+/// cannot be read.
+pub(crate) fn read_checked<T: DeserializeOwned>(
+    path: &Path,
+    what: &str,
+    problems: impl FnOnce(&T, &Source<'_>) -> Vec<StudyError>,
+) -> Result<T, Vec<StudyError>> {
+    let text = crate::io::text::read_text(path).map_err(|e| {
+        vec![StudyError {
+            file: path.to_owned(),
+            key: KeyPath::root(),
+            position: None,
+            reason: format!("cannot read the {what} file: {e}"),
+        }]
+    })?;
+    decode_checked(path, &text, problems)
 }

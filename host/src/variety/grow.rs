@@ -100,7 +100,7 @@ struct Plan {
 }
 
 /// A truncated-normal draw of `s` (redrawn outside mean ± 3 SD).
-fn draw(s: &Spread, rng: &mut ChaCha8Rng) -> f64 {
+pub(crate) fn draw(s: &Spread, rng: &mut ChaCha8Rng) -> f64 {
     if s.sd == 0.0 {
         return s.mean;
     }
@@ -356,15 +356,23 @@ fn part(
     }
 }
 
-/// Grows the plant of `seed` (module notes).
-pub(super) fn grow(v: &Variety, seed: u64) -> Result<(Topology, PlantModel), PlantError> {
+/// Grows the plant of `seed` (module notes) around its surroundings: `outside` names the
+/// spheres of a generated plant that touch something outside it (a neighbouring plant in a
+/// field); those are regrown like clashing parts, and a stem among them refuses the plant
+/// ([`PlantError::Crowded`]).
+pub(super) fn grow(
+    v: &Variety,
+    seed: u64,
+    outside: &dyn Fn(&PlantModel) -> Vec<usize>,
+) -> Result<(Topology, PlantModel), PlantError> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut plan = Plan::draw(v, &mut rng)?;
     for _ in 0..MAX_REGROWTHS {
         let topology = plan.topology(v);
         let model = generate(&topology)?;
         let clashes = model.overlapping_pairs(CLASH_TOLERANCE_M);
-        if clashes.is_empty() {
+        let touching = outside(&model);
+        if clashes.is_empty() && touching.is_empty() {
             return Ok((topology, model));
         }
         let mut regrow: Vec<Regrow> = Vec::new();
@@ -383,6 +391,18 @@ pub(super) fn grow(v: &Variety, seed: u64) -> Result<(Topology, PlantModel), Pla
             };
             regrow.push(r);
         }
+        for s in touching {
+            let part = &model.bodies[model.spheres[s].body].part;
+            match Regrow::of(part) {
+                Some(r) => regrow.push(r),
+                None => {
+                    return Err(PlantError::Crowded {
+                        seed,
+                        parts: [part.clone(), NEIGHBOUR.to_owned()],
+                    })
+                }
+            }
+        }
         regrow.sort_unstable();
         regrow.dedup();
         for r in regrow {
@@ -400,6 +420,9 @@ pub(super) fn grow(v: &Variety, seed: u64) -> Result<(Topology, PlantModel), Pla
         rounds: MAX_REGROWTHS,
     })
 }
+
+/// What a part touching something outside its plant is said to clash with.
+const NEIGHBOUR: &str = "a neighbouring plant";
 
 /// A part that can be drawn again when it clashes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]

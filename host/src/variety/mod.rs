@@ -26,19 +26,19 @@
 
 mod grow;
 
+pub(crate) use grow::draw;
+
 use std::collections::BTreeMap;
 use std::path::Path;
 
 use serde::Deserialize;
-use toml::de::DeValue;
-use toml::Spanned;
 
 use crate::plant::topology::{BondSet, MAX_POD_SPHERES};
 use crate::plant::{PlantError, PlantModel, Topology};
 use crate::plausible::PLANT_ORGAN_MM;
-use crate::study::error::{StudyError, StudyErrors};
+use crate::study::error::{write_rejected, StudyError};
 use crate::study::key_path::KeyPath;
-use crate::study::source::Source;
+use crate::study::source::{decode_checked, read_checked, Source};
 
 /// Every error found in one variety file, in file order (never empty when returned).
 #[derive(Debug, Clone, PartialEq)]
@@ -46,16 +46,7 @@ pub struct VarietyErrors(pub Vec<StudyError>);
 
 impl std::fmt::Display for VarietyErrors {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let n = self.0.len();
-        let noun = if n == 1 { "error" } else { "errors" };
-        write!(
-            f,
-            "variety file rejected before any plant was grown: {n} {noun}"
-        )?;
-        for e in &self.0 {
-            write!(f, "\n  {e}")?;
-        }
-        Ok(())
+        write_rejected(f, "variety file", "any plant was grown", &self.0)
     }
 }
 
@@ -190,33 +181,12 @@ pub struct Variety {
 impl Variety {
     /// Reads and checks a variety file; `path` names it in every error.
     pub fn from_toml(path: &Path, text: &str) -> Result<Self, VarietyErrors> {
-        let source = Source::parse(path, text).map_err(VarietyErrors)?;
-        let root = Spanned::new(
-            source.doc.span(),
-            DeValue::Table(source.doc.get_ref().clone()),
-        );
-        let variety: Variety = source
-            .decode(&KeyPath::root(), &root)
-            .map_err(|e| VarietyErrors(vec![e]))?;
-        let errors = variety.problems(&source);
-        if errors.is_empty() {
-            Ok(variety)
-        } else {
-            Err(VarietyErrors(StudyErrors(errors).sorted().0))
-        }
+        decode_checked(path, text, Self::problems).map_err(VarietyErrors)
     }
 
     /// Reads and checks the variety file at `path`.
     pub fn read(path: &Path) -> Result<Self, VarietyErrors> {
-        let text = crate::io::text::read_text(path).map_err(|e| {
-            VarietyErrors(vec![StudyError {
-                file: path.to_owned(),
-                key: KeyPath::root(),
-                position: None,
-                reason: format!("cannot read the variety file: {e}"),
-            }])
-        })?;
-        Self::from_toml(path, &text)
+        read_checked(path, "variety", Self::problems).map_err(VarietyErrors)
     }
 
     /// Every value outside what a plant can be grown from, each at its key.
@@ -368,7 +338,19 @@ impl Variety {
     /// ([`crate::plant::generate`]). Stalks whose pods would overlap another part are grown again
     /// in other directions (see [`grow`]).
     pub fn grow(&self, seed: u64) -> Result<(Topology, PlantModel), PlantError> {
-        grow::grow(self, seed)
+        grow::grow(self, seed, &|_| Vec::new())
+    }
+
+    /// The plant of `seed`, grown around its surroundings: `outside` returns the indices of
+    /// the spheres of a generated plant that touch something outside it (a neighbour in a
+    /// field, [`crate::field`]). Touching stalks, pods and leaves are drawn again as clashing
+    /// ones are; a touching stem refuses the plant ([`PlantError::Crowded`]).
+    pub fn grow_around(
+        &self,
+        seed: u64,
+        outside: &dyn Fn(&PlantModel) -> Vec<usize>,
+    ) -> Result<(Topology, PlantModel), PlantError> {
+        grow::grow(self, seed, outside)
     }
 }
 
@@ -389,7 +371,7 @@ pub const MAX_LATERAL_PAIRS: usize = 8;
 pub const MAX_LEAVES_PER_STEM: usize = 50;
 
 /// Refuses a spread whose draws could leave [`lo`, `hi`] or whose numbers are not finite.
-fn check_spread(
+pub(crate) fn check_spread(
     bad: &mut impl FnMut(&[&str], String),
     path: &[&str],
     s: Spread,

@@ -1,0 +1,291 @@
+//! A field: the plants of one variety in ridge rows, their pods at depth in a bed of soil
+//! grains (issue 20, item 2). A field file names the variety file, the ridge section (seed
+//! 001 §3.3 harvests 1 m sections of ridge), the row and hole spacing, the plants per hole,
+//! and the soil: bed depth, grain size, grain material, contacts and cohesion. Every value is
+//! a study input, so a user describes their own field without code.
+//!
+//! [`FieldSpec::plant`] lays the field out from a seed ([`layout`]): one seed always gives the
+//! same field. Each plant is grown from its own seed ([`crate::variety`]) and turned about its
+//! main stem until it touches no plant placed before it; then the soil grains fill the bed
+//! around the pods and stalks ([`soil`]). [`Field::load_into`] puts everything in one core
+//! world ([`world`]): contacts between plants, between pods of different plants and with the
+//! soil are on.
+//!
+//! ```
+//! use arachis::field::FieldSpec;
+//! let dir = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../testdata/peanut-plant"));
+//! let spec = FieldSpec::read(&dir.join("field-huayu.toml")).unwrap();
+//! assert_eq!(spec.field.rows, 2);
+//! ```
+//!
+//! A bad file is refused before anything is grown, with its path, line and key
+//! ([`FieldErrors`], positioned as a study file's errors are).
+
+pub mod layout;
+pub mod picture;
+pub mod soil;
+pub mod world;
+
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+
+use crate::plausible::{DENSITY_KG_M3, FRICTION, SHEAR_MODULUS_PA};
+use crate::study::error::{write_rejected, StudyError};
+use crate::study::key_path::KeyPath;
+use crate::study::source::{decode_checked, read_checked, Source};
+use crate::variety::{check_spread, Spread, Variety, VarietyErrors};
+pub use layout::{Field, FieldError, PlacedPlant};
+
+/// Every error found in one field file (or in the variety file it names), in file order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FieldErrors(pub Vec<StudyError>);
+
+impl std::fmt::Display for FieldErrors {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write_rejected(f, "field file", "any plant was grown", &self.0)
+    }
+}
+
+impl std::error::Error for FieldErrors {}
+
+/// The ridge section and its planting.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Ridge {
+    /// Name shown in outputs.
+    pub name: String,
+    /// The variety file, relative to the field file.
+    pub variety: PathBuf,
+    /// Length of the ridge section along x, m.
+    pub ridge_length_m: f64,
+    /// Plant rows on the ridge (along x, spaced along y).
+    pub rows: usize,
+    /// Distance between neighbouring rows, m.
+    pub row_spacing_m: f64,
+    /// Distance between neighbouring holes along a row, m.
+    pub hole_spacing_m: f64,
+    /// Plants grown from one hole (0: a bare bed, e.g. to check the soil alone).
+    pub plants_per_hole: usize,
+    /// Distance between neighbouring plants of one hole, along the row, m.
+    pub hole_plant_gap_m: f64,
+}
+
+/// Restitution, static and rolling friction of one soil contact (EDEM's Hertz–Mindlin
+/// inputs, seed 000 §2.3).
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactValues {
+    /// Coefficient of restitution.
+    pub restitution: f64,
+    /// Coefficient of static friction.
+    pub friction: f64,
+    /// Coefficient of rolling friction (EDEM's CDT).
+    pub rolling_friction: f64,
+}
+
+/// The soil contacts: grain–grain, grain–pod and grain–plant (stems, stalks, leaves).
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SoilContacts {
+    /// Grain–grain.
+    pub soil: ContactValues,
+    /// Grain–pod.
+    pub pod: ContactValues,
+    /// Grain–stalk, stem and leaf.
+    pub plant: ContactValues,
+}
+
+/// The soil bed.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Soil {
+    /// Depth of the bed below the surface (z = 0), m.
+    pub depth_m: f64,
+    /// Bed beyond each outer row and beyond each end of the ridge section, m (pods hang on
+    /// laterals up to about 0.2 m from their root).
+    pub margin_m: f64,
+    /// Grain radius, mm, drawn per grain.
+    pub grain_radius_mm: Spread,
+    /// Grain particle density, kg/m³.
+    pub density_kg_m3: f64,
+    /// Grain Young's modulus, Pa.
+    pub youngs_modulus_pa: f64,
+    /// Grain Poisson's ratio.
+    pub poisson: f64,
+    /// JKR work of adhesion Γ of every soil contact, J/m² (0: none): pull-off 1.5πΓR*.
+    pub jkr_work_of_adhesion_j_m2: f64,
+    /// The soil's contacts.
+    pub contacts: SoilContacts,
+}
+
+/// A field file.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FieldSpec {
+    /// The ridge and its planting.
+    pub field: Ridge,
+    /// The soil bed.
+    pub soil: Soil,
+    /// The variety file's contents, read by [`FieldSpec::read`].
+    #[serde(skip)]
+    pub variety: Option<Variety>,
+}
+
+/// Most rows on one ridge.
+pub const MAX_ROWS: usize = 16;
+/// Most plants per hole.
+pub const MAX_PLANTS_PER_HOLE: usize = 8;
+/// Longest ridge section, m.
+pub const MAX_RIDGE_LENGTH_M: f64 = 20.0;
+/// Deepest soil bed, m.
+pub const MAX_SOIL_DEPTH_M: f64 = 2.0;
+/// Grain radius range, mm: from fine sand to clods.
+pub const GRAIN_RADIUS_MM: (f64, f64) = (0.05, 100.0);
+
+impl FieldSpec {
+    /// Reads and checks a field file (without its variety: [`FieldSpec::read`] reads that
+    /// too); `path` names it in every error.
+    pub fn from_toml(path: &Path, text: &str) -> Result<Self, FieldErrors> {
+        decode_checked(path, text, Self::problems).map_err(FieldErrors)
+    }
+
+    /// Reads and checks the field file at `path`, then the variety file it names.
+    pub fn read(path: &Path) -> Result<Self, FieldErrors> {
+        let mut spec: FieldSpec =
+            read_checked(path, "field", Self::problems).map_err(FieldErrors)?;
+        let variety_path = path
+            .parent()
+            .unwrap_or(Path::new("."))
+            .join(&spec.field.variety);
+        let variety =
+            Variety::read(&variety_path).map_err(|VarietyErrors(errors)| FieldErrors(errors))?;
+        spec.variety = Some(variety);
+        Ok(spec)
+    }
+
+    /// Width of the bed across the rows, m.
+    pub fn bed_width_m(&self) -> f64 {
+        (self.field.rows.max(1) - 1) as f64 * self.field.row_spacing_m + 2.0 * self.soil.margin_m
+    }
+
+    /// Every value outside what a field can be built from, each at its key.
+    fn problems(&self, source: &Source<'_>) -> Vec<StudyError> {
+        let mut errors = Vec::new();
+        let mut bad = |path: &[&str], reason: String| {
+            let key = path
+                .iter()
+                .fold(KeyPath::root(), |k, segment| k.key(segment));
+            errors.push(source.error(&key, reason));
+        };
+        let f = &self.field;
+        let positive_below = |v: f64, max: f64| v.is_finite() && v > 0.0 && v <= max;
+        for (key, v, max) in [
+            ("ridge_length_m", f.ridge_length_m, MAX_RIDGE_LENGTH_M),
+            ("row_spacing_m", f.row_spacing_m, MAX_RIDGE_LENGTH_M),
+            ("hole_spacing_m", f.hole_spacing_m, f.ridge_length_m),
+        ] {
+            if !positive_below(v, max) {
+                bad(
+                    &["field", key],
+                    format!("must be > 0 m and at most {max} m, got {v}"),
+                );
+            }
+        }
+        if !(f.hole_plant_gap_m.is_finite() && f.hole_plant_gap_m >= 0.0) {
+            bad(
+                &["field", "hole_plant_gap_m"],
+                format!("must be ≥ 0 m, got {}", f.hole_plant_gap_m),
+            );
+        }
+        if !(1..=MAX_ROWS).contains(&f.rows) {
+            bad(
+                &["field", "rows"],
+                format!("must be 1 to {MAX_ROWS}, got {}", f.rows),
+            );
+        }
+        if f.plants_per_hole > MAX_PLANTS_PER_HOLE {
+            bad(
+                &["field", "plants_per_hole"],
+                format!(
+                    "must be 0 to {MAX_PLANTS_PER_HOLE}, got {}",
+                    f.plants_per_hole
+                ),
+            );
+        }
+        let s = &self.soil;
+        if !positive_below(s.depth_m, MAX_SOIL_DEPTH_M) {
+            bad(
+                &["soil", "depth_m"],
+                format!(
+                    "must be > 0 m and at most {MAX_SOIL_DEPTH_M} m, got {}",
+                    s.depth_m
+                ),
+            );
+        }
+        if !(s.margin_m.is_finite() && s.margin_m >= 0.0 && s.margin_m <= MAX_RIDGE_LENGTH_M) {
+            bad(
+                &["soil", "margin_m"],
+                format!("must be 0 to {MAX_RIDGE_LENGTH_M} m, got {}", s.margin_m),
+            );
+        }
+        check_spread(
+            &mut bad,
+            &["soil", "grain_radius_mm"],
+            s.grain_radius_mm,
+            GRAIN_RADIUS_MM.0,
+            GRAIN_RADIUS_MM.1,
+            "mm",
+        );
+        let grain_mm = s.grain_radius_mm.high();
+        if s.depth_m.is_finite() && grain_mm.is_finite() && 2.0 * grain_mm * 1e-3 > s.depth_m {
+            bad(
+                &["soil", "depth_m"],
+                format!(
+                    "must hold at least one layer of grains ({:.4} m for the largest grain), got {}",
+                    2e-3 * grain_mm,
+                    s.depth_m
+                ),
+            );
+        }
+        if let Err(why) = DENSITY_KG_M3.check(s.density_kg_m3) {
+            bad(&["soil", "density_kg_m3"], why);
+        }
+        if let Err(why) = SHEAR_MODULUS_PA.check(s.youngs_modulus_pa) {
+            bad(&["soil", "youngs_modulus_pa"], why);
+        }
+        if !(s.poisson.is_finite() && s.poisson > -1.0 && s.poisson < 0.5) {
+            bad(
+                &["soil", "poisson"],
+                format!("must lie in (−1, 0.5), got {}", s.poisson),
+            );
+        }
+        if !(s.jkr_work_of_adhesion_j_m2.is_finite() && s.jkr_work_of_adhesion_j_m2 >= 0.0) {
+            bad(
+                &["soil", "jkr_work_of_adhesion_j_m2"],
+                format!("must be ≥ 0 J/m², got {}", s.jkr_work_of_adhesion_j_m2),
+            );
+        }
+        for (name, c) in [
+            ("soil", s.contacts.soil),
+            ("pod", s.contacts.pod),
+            ("plant", s.contacts.plant),
+        ] {
+            if !(c.restitution.is_finite() && c.restitution > 0.0 && c.restitution <= 1.0) {
+                bad(
+                    &["soil", "contacts", name, "restitution"],
+                    format!("must lie in (0, 1], got {}", c.restitution),
+                );
+            }
+            for (key, v) in [
+                ("friction", c.friction),
+                ("rolling_friction", c.rolling_friction),
+            ] {
+                if let Err(why) = FRICTION.check(v) {
+                    bad(&["soil", "contacts", name, key], why);
+                }
+            }
+        }
+        errors
+    }
+}

@@ -1,0 +1,240 @@
+//! Issue 20, item 2: a field of plants in ridge rows with their pods in a soil bed
+//! (`arachis::field`, `arachis field`).
+//!
+//! - The shipped field plants every hole, and every pod hangs at a depth within the
+//!   variety's stated spread (10–70 mm for the junction).
+//! - No two bodies of the field start interpenetrating (plants of different holes, grains,
+//!   pods), since every contact between them is on.
+//! - A bare bed settles onto its floor: at rest, the floor carries the grains' weight
+//!   (static equilibrium; the bed has no side walls, so nothing else can carry it).
+//! - The field's world steps with contacts between plants and with the soil, with the same
+//!   bits on 1 and 2 threads.
+//! - Bad field input: exit 2, the file, line and key named, nothing written.
+
+use std::path::{Path, PathBuf};
+
+use arachis::arena::{OwnedBonds, OwnedStorage};
+use arachis::field::layout::holes;
+use arachis::field::{Field, FieldSpec};
+use arachis::plant::overlap::SphereGrid;
+use arachis_core::prelude::*;
+
+use crate::cli_support::{arachis, REPO_ROOT};
+
+/// Standard gravity used by the field's world, m/s².
+const G_M_S2: f64 = 9.81;
+
+fn shipped_path() -> PathBuf {
+    Path::new(REPO_ROOT).join("testdata/peanut-plant/field-huayu.toml")
+}
+
+fn shipped() -> FieldSpec {
+    FieldSpec::read(&shipped_path()).expect("the shipped field file reads")
+}
+
+/// Steps `field` in a fresh fixed-point world on `threads` threads; returns the digest, the
+/// bonds left and the floor's vertical force, N (the force the grains push it with).
+fn step(spec: &FieldSpec, field: &Field, steps: u64, threads: usize) -> (u64, usize, f64, f64) {
+    let mut arena = OwnedStorage::<Fx>::new(field.storage_lengths(spec));
+    let mut bonds = OwnedBonds::<Fx>::new(field.bond_count());
+    let mut w = World::new(arena.storage()).unwrap();
+    w.attach_bond_storage(bonds.storage()).unwrap();
+    let loaded = field.load_into(spec, &mut w).unwrap();
+    arachis::stepping::with_threads(threads, || arachis::stepping::run(&mut w, steps)).unwrap();
+    let floor_n = -w.walls()[loaded.floor.0 as usize].force.z.to_f64();
+    let ke_j = w.kinetic_energy_mj() / 1000.0;
+    (w.digest(), w.bonds().bonds().len(), floor_n, ke_j)
+}
+
+#[test]
+fn the_shipped_field_plants_every_hole_with_its_pods_at_their_depth() {
+    let spec = shipped();
+    let field = spec.plant(1).unwrap();
+    let holes = holes(&spec);
+    assert_eq!(
+        holes.len(),
+        spec.field.rows * 5,
+        "1 m of ridge at 0.2 m holes"
+    );
+    assert_eq!(field.plants.len(), holes.len() * spec.field.plants_per_hole);
+    for (p, hole) in field.plants.iter().zip(&holes) {
+        assert_eq!([p.root_m[0], p.root_m[1]], *hole);
+        let root = &p.model.spheres[p.model.bodies[0].spheres[0]];
+        assert!((root.centre_m[0] - hole[0]).abs() < 1e-12);
+    }
+    let depth = spec.variety.as_ref().unwrap().pods.depth_mm;
+    let mut pods = 0;
+    for p in &field.plants {
+        for d in p.model.junction_depths_mm() {
+            assert!(
+                (depth.low() - 1e-6..=depth.high() + 1e-6).contains(&d),
+                "junction at {d} mm, outside the variety's {}–{} mm",
+                depth.low(),
+                depth.high()
+            );
+            pods += 1;
+        }
+    }
+    assert_eq!(pods, field.pods());
+    assert!(
+        field.pods() > 5 * field.plants.len(),
+        "{} pods",
+        field.pods()
+    );
+    assert!(!field.grains.is_empty());
+}
+
+#[test]
+fn no_two_bodies_of_the_field_start_interpenetrating() {
+    let spec = shipped();
+    let field = spec.plant(1).unwrap();
+    // Each sphere with its body: plant p's body b, or a grain.
+    let mut spheres: Vec<([f64; 3], f64, (usize, usize))> = Vec::new();
+    for (p, plant) in field.plants.iter().enumerate() {
+        for s in &plant.model.spheres {
+            spheres.push((s.centre_m, s.radius_m, (p, s.body)));
+        }
+    }
+    for (g, grain) in field.grains.iter().enumerate() {
+        spheres.push((grain.centre_m, grain.radius_m, (usize::MAX, g)));
+    }
+    let largest = spheres.iter().map(|s| s.1).fold(0.0, f64::max);
+    let mut grid = SphereGrid::new(largest);
+    for s in &spheres {
+        grid.insert(s.0, s.1);
+    }
+    // Bonded neighbours of one plant are placed 1 µm apart; nothing may overlap by more
+    // than 0.1 µm.
+    let mut clashes = Vec::new();
+    for (a, s) in spheres.iter().enumerate() {
+        for b in grid.overlapping(s.0, s.1, 1e-7).filter(|&b| b > a) {
+            if spheres[b].2 != s.2 {
+                clashes.push((s.2, spheres[b].2));
+            }
+        }
+    }
+    assert!(
+        clashes.is_empty(),
+        "{} clashes, first {:?}",
+        clashes.len(),
+        &clashes[..clashes.len().min(5)]
+    );
+    assert!(spheres.len() > 30_000, "{} spheres", spheres.len());
+}
+
+#[test]
+fn one_seed_gives_one_field_and_another_seed_another() {
+    let spec = shipped();
+    let a = spec.plant(3).unwrap();
+    assert_eq!(a, spec.plant(3).unwrap());
+    let b = spec.plant(4).unwrap();
+    assert_ne!(a.plants[0].model, b.plants[0].model);
+}
+
+#[test]
+fn a_bare_bed_settles_until_its_floor_carries_the_grains_weight() {
+    let mut spec = shipped();
+    spec.field.plants_per_hole = 0;
+    spec.field.rows = 1;
+    spec.field.ridge_length_m = 0.2;
+    spec.soil.margin_m = 0.05;
+    spec.soil.depth_m = 0.06;
+    let field = spec.plant(1).unwrap();
+    assert!(field.plants.is_empty());
+    let weight_n: f64 = field
+        .grains
+        .iter()
+        .map(|g| {
+            spec.soil.density_kg_m3 * 4.0 / 3.0 * std::f64::consts::PI * g.radius_m.powi(3) * G_M_S2
+        })
+        .sum();
+    let probe = {
+        let mut arena = OwnedStorage::<Fx>::new(field.storage_lengths(&spec));
+        let mut w = World::new(arena.storage()).unwrap();
+        field.load_into(&spec, &mut w).unwrap();
+        w.timestep_s()
+    };
+    // 0.5 s: the grains fall at most a few millimetres into place, then their contacts
+    // damp the rebounds (restitution 0.4).
+    let steps = (0.5 / probe).ceil() as u64;
+    let (_, _, floor_n, ke_j) = step(&spec, &field, steps, 2);
+    let ratio = floor_n / weight_n;
+    println!(
+        "{} grains, weight {weight_n:.3} N, floor {floor_n:.3} N (ratio {ratio:.4}), KE {ke_j:.2e} J after {steps} steps",
+        field.grains.len()
+    );
+    // At rest the floor carries the whole weight; the residual motion after 0.5 s is
+    // allowed 2 %.
+    assert!((ratio - 1.0).abs() < 0.02, "floor/weight = {ratio}");
+}
+
+#[test]
+fn the_field_steps_with_the_same_bits_on_one_and_two_threads() {
+    let spec = shipped();
+    let field = spec.plant(1).unwrap();
+    let one = step(&spec, &field, 40, 1);
+    let two = step(&spec, &field, 40, 2);
+    assert_eq!(one.0, two.0, "digest on 1 and 2 threads");
+    assert_eq!(
+        one.1,
+        field.bond_count(),
+        "no bond breaks in 40 steps of settling"
+    );
+}
+
+#[test]
+fn bad_field_input_exits_2_naming_file_line_and_key_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(shipped_path()).unwrap();
+    std::fs::copy(
+        Path::new(REPO_ROOT).join("testdata/peanut-plant/variety-huayu.toml"),
+        dir.path().join("variety-huayu.toml"),
+    )
+    .unwrap();
+    let vtk = dir.path().join("field.vtk");
+    let cases = [
+        ("depth_m = 0.10", "depth_m = -0.10", "soil.depth_m"),
+        ("rows = 2", "rows = 0", "field.rows"),
+        (
+            "friction = 0.6",
+            "friction = 1e300",
+            "soil.contacts.soil.friction",
+        ),
+        (
+            "ridge_length_m = 1.0",
+            "ridge_length_m = 1.0\nridge_lenght_m = 2.0",
+            "ridge_lenght_m",
+        ),
+        (
+            "variety-huayu.toml",
+            "no-such-variety.toml",
+            "no-such-variety.toml",
+        ),
+    ];
+    for (from, to, named) in cases {
+        assert!(text.contains(from), "{from}");
+        let path = dir.path().join("field.toml");
+        std::fs::write(&path, text.replacen(from, to, 1)).unwrap();
+        let out = arachis(&[
+            "field",
+            path.to_str().unwrap(),
+            "--vtk",
+            vtk.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{to}: {err}");
+        assert!(err.contains(named), "{to}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(!vtk.exists(), "{to}: a VTK file was written");
+    }
+    // A line number for a key the file has.
+    std::fs::write(
+        dir.path().join("field.toml"),
+        text.replacen("rows = 2", "rows = 0", 1),
+    )
+    .unwrap();
+    let out = arachis(&["field", dir.path().join("field.toml").to_str().unwrap()]);
+    let line = text.lines().position(|l| l.starts_with("rows = ")).unwrap() + 1;
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains(&format!(":{line}:")), "line {line}: {err}");
+}
