@@ -5,6 +5,7 @@
 //! writes every sphere for ParaView, `--picture` the plan view of the plants. A bad field or variety file is refused with its path,
 //! line and key; nothing is written.
 
+use arachis_core::units::LENGTH_M_TO_MM;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -39,8 +40,6 @@ pub struct Args {
 
 /// Most steps one call runs.
 const MAX_STEPS: u64 = 100_000_000;
-/// Millimetres per metre.
-const MM_PER_M: f64 = 1e3;
 
 /// The printed line.
 #[derive(Debug, Serialize)]
@@ -104,7 +103,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .pods
         .iter()
         .filter(|&&id| {
-            let p = world.body(id).position.to_f64().map(|x| x / MM_PER_M);
+            let p = world.body(id).position.to_f64().map(|x| x / LENGTH_M_TO_MM);
             (0..3).all(|k| (field.bed_min_m[k]..=field.bed_max_m[k]).contains(&p[k]))
         })
         .count();

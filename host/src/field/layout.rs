@@ -14,6 +14,7 @@
 //! that finds none is grown again from its next seed, at most [`MAX_PLANT_REGROWTHS`] times;
 //! then the field is refused as too crowded.
 
+use arachis_core::units::LENGTH_M_TO_MM;
 use rand::{Rng, RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -27,8 +28,6 @@ use crate::plant::{PlantError, PlantModel};
 pub const MAX_YAW_DRAWS: usize = 64;
 /// Plants grown again (from the next seed) when no yaw fits.
 pub const MAX_PLANT_REGROWTHS: usize = 8;
-/// Millimetres per metre.
-const MM_PER_M: f64 = 1e3;
 /// Overlap tolerated between spheres of different plants, m (numerical noise only).
 pub const PLANT_OVERLAP_TOLERANCE_M: f64 = 1e-7;
 
@@ -178,7 +177,7 @@ impl FieldSpec {
                     let obstacles = obstacles.get_or_insert_with(|| {
                         Obstacles::reserving(
                             &roots,
-                            variety.main_stem.diameter_mm / 2.0 / MM_PER_M,
+                            variety.main_stem.diameter_mm / 2.0 / LENGTH_M_TO_MM,
                             variety.main_stem.length_mm.high(),
                         )
                     });
@@ -255,7 +254,7 @@ impl Obstacles {
         let mut grid = SphereGrid::new(stem_radius);
         let mut owner = Vec::new();
         if stem_radius > 0.0 {
-            let count = (tallest_mm / MM_PER_M / (2.0 * stem_radius)).ceil() as usize;
+            let count = (tallest_mm / LENGTH_M_TO_MM / (2.0 * stem_radius)).ceil() as usize;
             for (i, root) in roots.iter().enumerate() {
                 for k in 0..count {
                     let z = root[2] + stem_radius * (1 + 2 * k) as f64;

@@ -11,6 +11,7 @@
 //! A face-centred cubic lattice of touching equal spheres fills π/√18 ≈ 74 % of the bed; with
 //! the gap and the spread of radii the fill is lower ([`fill_fraction`] reports it).
 
+use arachis_core::units::LENGTH_M_TO_MM;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
@@ -23,8 +24,6 @@ use crate::variety::draw;
 pub const GRAIN_GAP: f64 = 0.02;
 /// Clearance kept between a grain and any plant sphere, m.
 pub const PLANT_CLEARANCE_M: f64 = 1e-4;
-/// Millimetres per metre.
-const MM_PER_M: f64 = 1e3;
 
 /// One soil grain (SI).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -43,7 +42,7 @@ pub fn fill_soil(
     plants: &[PlacedPlant],
     rng: &mut ChaCha8Rng,
 ) -> Vec<Grain> {
-    let largest_m = soil.grain_radius_mm.high() / MM_PER_M;
+    let largest_m = soil.grain_radius_mm.high() / LENGTH_M_TO_MM;
     let spacing = 2.0 * largest_m * (1.0 + GRAIN_GAP);
     // The cubic cell of the lattice: four nodes at its corner and face centres.
     let cell = spacing * std::f64::consts::SQRT_2;
@@ -76,7 +75,7 @@ pub fn fill_soil(
                     if (0..3).any(|a| node[a] + spacing / 2.0 > max_m[a]) {
                         continue;
                     }
-                    let radius_m = draw(&soil.grain_radius_mm, rng) / MM_PER_M;
+                    let radius_m = draw(&soil.grain_radius_mm, rng) / LENGTH_M_TO_MM;
                     // Neighbours are `spacing` apart: moving each by at most half the slack
                     // keeps them apart (the move's length is at most √3 × its per-axis bound).
                     let room = (spacing / 2.0 - radius_m) / 3f64.sqrt();
