@@ -1,16 +1,17 @@
-//! `arachis field FILE [--seed N] [--steps K] [--vtk FILE.vtk] [--picture FILE.svg]`: lay out the field of a field
-//! file (`crate::field`: the plants of its variety in ridge rows, their pods in a bed of soil
-//! grains), put it in one world, step it K steps (0: none) and print one JSON line: plants,
-//! pods, grains, bonds, where the pods lie, the time step and the world's digest. `--vtk`
-//! writes every sphere for ParaView, `--picture` the plan view of the plants. A bad field or variety file is refused with its path,
-//! line and key; nothing is written.
+//! `arachis field FILE [--seed N] [--steps K] [--vtk FILE.vtk] [--picture FILE.svg]`: lay out
+//! the field of a field file (`crate::field`: the plants of its variety in ridge rows, their
+//! pods in a bed of soil grains), put it in one world, step it K steps (0: none) and print
+//! one JSON line: plants, pods, grains, bonds, where the pods lie, the time step and the
+//! world's digest. `--vtk` writes every sphere for ParaView, `--picture` the plan view of the
+//! plants. A bad field or variety file is refused with its path, line and key; nothing is
+//! written.
 
-use arachis_core::units::LENGTH_M_TO_MM;
 use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::Context;
 use arachis_core::prelude::*;
+use arachis_core::units::LENGTH_M_TO_MM;
 use serde::Serialize;
 
 use crate::arena::{OwnedBonds, OwnedStorage};

@@ -165,7 +165,11 @@ impl FieldSpec {
             })
             .collect();
         let mut plants: Vec<PlacedPlant> = Vec::with_capacity(roots.len());
-        let mut obstacles: Option<Obstacles> = None;
+        let mut obstacles = Obstacles::reserving(
+            &roots,
+            variety.main_stem.diameter_mm / 2.0 / LENGTH_M_TO_MM,
+            variety.main_stem.length_mm.high(),
+        );
         for (i, &root) in roots.iter().enumerate() {
             let mut tries = 0;
             let mut placed = None;
@@ -174,13 +178,6 @@ impl FieldSpec {
                 for _ in 0..MAX_YAW_DRAWS {
                     tries += 1;
                     let yaw = rng.gen_range(0.0..std::f64::consts::TAU);
-                    let obstacles = obstacles.get_or_insert_with(|| {
-                        Obstacles::reserving(
-                            &roots,
-                            variety.main_stem.diameter_mm / 2.0 / LENGTH_M_TO_MM,
-                            variety.main_stem.length_mm.high(),
-                        )
-                    });
                     let touching = |m: &PlantModel| obstacles.touching(&moved(m, yaw, root), i);
                     match variety.grow_around(plant_seed, &touching) {
                         Ok((_, model)) => {
@@ -216,10 +213,7 @@ impl FieldSpec {
                     tries,
                 });
             };
-            obstacles
-                .as_mut()
-                .expect("set when the first plant was grown")
-                .add(&p.model, i);
+            obstacles.add(&p.model, i);
             plants.push(p);
         }
         let half_width = self.bed_width_m() / 2.0;

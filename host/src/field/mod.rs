@@ -28,6 +28,7 @@ pub mod world;
 
 use std::path::{Path, PathBuf};
 
+use arachis_core::units::LENGTH_M_TO_MM;
 use serde::Deserialize;
 
 use crate::plausible::{DENSITY_KG_M3, FRICTION, SHEAR_MODULUS_PA};
@@ -238,12 +239,12 @@ impl FieldSpec {
             "mm",
         );
         let grain_mm = s.grain_radius_mm.high();
-        if s.depth_m.is_finite() && grain_mm.is_finite() && 2.0 * grain_mm * 1e-3 > s.depth_m {
+        let layer_m = 2.0 * grain_mm / LENGTH_M_TO_MM;
+        if s.depth_m.is_finite() && layer_m.is_finite() && layer_m > s.depth_m {
             bad(
                 &["soil", "depth_m"],
                 format!(
-                    "must hold at least one layer of grains ({:.4} m for the largest grain), got {}",
-                    2e-3 * grain_mm,
+                    "must hold at least one layer of grains ({layer_m:.4} m for the largest grain), got {}",
                     s.depth_m
                 ),
             );

@@ -4,7 +4,8 @@
 //! Neighbouring nodes lie the largest grain's diameter times (1 + [`GRAIN_GAP`]) apart; each
 //! node holds one grain whose radius is drawn from the soil's spread and whose centre is
 //! moved at random by at most half the room its neighbours leave (along each axis, scaled so
-//! the move's length stays within it), so no two grains touch and no grain leaves the bed. A grain that would overlap a plant sphere (pods, stalks, the root) is left out. The
+//! the move's length stays within it), so no two grains touch and no grain leaves the bed.
+//! A grain that would overlap a plant sphere (pods, stalks, the root) is left out. The
 //! grains are not yet settled: a harvest lets them fall into place under gravity, with their
 //! cohesion, before the machine arrives.
 //!

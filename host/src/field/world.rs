@@ -98,16 +98,16 @@ impl Field {
         world.set_gravity_m_s2(GRAVITY_M_S2).map_err(|e| core(&e))?;
         let mut roots = Vec::with_capacity(self.plants.len());
         let mut pods = Vec::new();
-        let mut sets = None;
+        // The plants of one variety share their bond sets: the first plant's serve them all.
+        let sets = match self.plants.first() {
+            Some(p) => p.model.add_bond_sets(world).map_err(|e| core(&e))?,
+            None => Default::default(),
+        };
         for p in &self.plants {
-            if sets.is_none() {
-                sets = Some(p.model.add_bond_sets(world).map_err(|e| core(&e))?);
-            }
-            let sets = sets.as_ref().expect("set above");
             let first = world.bodies().len() as u32;
             let root = p
                 .model
-                .load_sharing_sets(world, plant, pod, sets)
+                .load_sharing_sets(world, plant, pod, &sets)
                 .map_err(|e| core(&e))?;
             world.set_body_kinematic(root).map_err(|e| core(&e))?;
             roots.push(root);
