@@ -462,6 +462,29 @@ impl<S: Scalar> World<'_, S> {
         Ok(())
     }
 
+    /// Let kinematic body `id` go: forces and gravity move it again, from its present
+    /// velocities (a taproot cut by a digging shovel). Its inverse mass and inverse inertia
+    /// are the reciprocals of its stored mass (g) and principal moments (g·mm²), so a body
+    /// made kinematic and let go has the inverses it had to within their quantisation.
+    /// A body that was never kinematic is left as it is.
+    pub fn set_body_dynamic(&mut self, id: BodyId) -> Result<(), SetupError> {
+        if id.0 >= self.n_bodies {
+            return Err(SetupError::UnknownId { id: id.0 });
+        }
+        let b = &self.bodies[id.0 as usize];
+        if b.inv_mass != S::ZERO {
+            return Ok(());
+        }
+        let inv_mass = quantise(1.0 / b.mass.to_f64(), "inverse mass")?;
+        let inertia = [b.inertia.x, b.inertia.y, b.inertia.z].map(|i| 1.0 / i.to_f64());
+        let inv_inertia = q3_nonzero(inertia, "inverse inertia")?;
+        let b = &mut self.bodies[id.0 as usize];
+        b.inv_mass = inv_mass;
+        b.inv_inertia = inv_inertia;
+        self.sync_spheres_of(id.0 as usize);
+        Ok(())
+    }
+
     /// Refresh the motion snapshot of body `b`'s spheres ([`Sphere::sync_motion`]).
     fn sync_spheres_of(&mut self, b: usize) {
         let body = &self.bodies[b];
