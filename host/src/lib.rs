@@ -14,6 +14,7 @@ pub mod doe;
 pub mod export;
 pub mod field;
 pub mod harvest;
+pub mod harvester;
 pub mod io;
 pub mod lab;
 pub mod limits;

@@ -51,6 +51,7 @@ mod export_liggghts;
 mod field;
 mod golden_c5d1f03;
 mod harvest;
+mod harvester;
 mod hopper;
 mod lab_analyses;
 mod lab_bad_input;

@@ -5,6 +5,11 @@
 //! world's digest. `--vtk` writes every sphere for ParaView, `--picture` the plan view of the
 //! plants. A bad field or variety file is refused with its path, line and key; nothing is
 //! written.
+//!
+//! With `--harvester MACHINE.toml` (`crate::harvester`) the machine is mounted ahead of the
+//! bed and the K steps move it along the ridge (`--pass`: as many steps as the whole bed
+//! needs to pass the collector); the line then also holds the pods' ends so far
+//! (`harvest`: collected, unpicked, lost and where) and the loss rate.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -12,12 +17,16 @@ use std::time::Instant;
 use anyhow::Context;
 use arachis_core::prelude::*;
 use arachis_core::units::LENGTH_M_TO_MM;
+use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use crate::arena::{OwnedBonds, OwnedStorage};
 use crate::field::picture::write_field_picture;
 use crate::field::soil::fill_fraction;
 use crate::field::FieldSpec;
+use crate::harvester::loss::LossTally;
+use crate::harvester::rig::Rig;
+use crate::harvester::HarvesterSpec;
 use crate::vtk::{write_frame, ParticleFrame};
 
 /// Arguments of `arachis field`.
@@ -37,10 +46,29 @@ pub struct Args {
     /// Write the plan view of the laid-out field (plants from above), SVG.
     #[arg(long, value_name = "FILE.svg")]
     pub picture: Option<PathBuf>,
+    /// Harvester file (TOML, see `arachis::harvester`): mount it and drive it along the ridge.
+    #[arg(long, value_name = "MACHINE.toml")]
+    pub harvester: Option<PathBuf>,
+    /// With `--harvester`: run the whole pass instead of `--steps`.
+    #[arg(long, requires = "harvester", conflicts_with = "steps")]
+    pub pass: bool,
 }
 
 /// Most steps one call runs.
 const MAX_STEPS: u64 = 100_000_000;
+/// Steps between updates of the progress bar (a whole number of harvester chunks).
+const PROGRESS_STEPS: u64 = 40 * crate::harvester::rig::CHUNK_STEPS;
+
+fn progress_bar(steps: u64) -> ProgressBar {
+    // The default draw target is stderr, hidden when stderr is not a terminal.
+    let bar = ProgressBar::new(steps);
+    if let Ok(style) =
+        ProgressStyle::with_template("field {bar:40} {pos}/{len} steps  {per_sec}  eta {eta}")
+    {
+        bar.set_style(style);
+    }
+    bar
+}
 
 /// The printed line.
 #[derive(Debug, Serialize)]
@@ -66,15 +94,41 @@ struct FieldLine {
     wall_seconds: f64,
     threads: usize,
     digest: String,
+    /// With a harvester: where the pods are so far.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    harvest: Option<HarvestLine>,
+}
+
+/// The harvest part of the printed line.
+#[derive(Debug, Serialize)]
+struct HarvestLine {
+    machine: String,
+    /// Simulated time since the machine started, s.
+    machine_s: f64,
+    /// Simulated time of the whole pass, s.
+    pass_s: f64,
+    roots_cut: usize,
+    /// Loss rate so far, % (lost pods / all pods).
+    loss_rate_pct: Option<f64>,
+    /// Pods still on their plants, %.
+    unpicked_pct: Option<f64>,
+    pods: LossTally,
 }
 
 /// Runs `arachis field`.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let spec = FieldSpec::read(&args.file)?;
+    let machine = args
+        .harvester
+        .as_deref()
+        .map(HarvesterSpec::read)
+        .transpose()?;
     let field = spec
         .plant(args.seed)
         .with_context(|| format!("{}: cannot lay out the field", args.file.display()))?;
-    let mut arena = OwnedStorage::<Fx>::new(field.storage_lengths(&spec));
+    let (extra_bodies, extra_spheres) = machine.as_ref().map_or((0, 0), Rig::extra_storage);
+    let mut arena =
+        OwnedStorage::<Fx>::new(field.storage_lengths_with(&spec, extra_bodies, extra_spheres));
     let mut bonds = OwnedBonds::<Fx>::new(field.bond_count());
     let mut world = World::new(arena.storage()).map_err(|e| anyhow::anyhow!("{e}"))?;
     world
@@ -86,15 +140,54 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             args.file.display()
         )
     })?;
+    let mut rig = match (&machine, &args.harvester) {
+        (Some(m), Some(path)) => {
+            Some(Rig::mount(m, &field, &loaded, &mut world).map_err(|e| {
+                anyhow::anyhow!("{}: cannot mount the harvester: {e}", path.display())
+            })?)
+        }
+        _ => None,
+    };
+    let steps = match &rig {
+        Some(r) if args.pass => r.pass_steps(world.timestep_s()),
+        _ => args.steps,
+    };
     let started = Instant::now();
-    crate::stepping::run(&mut world, args.steps).map_err(|e| {
-        anyhow::anyhow!(
-            "{}: step failed at t = {} s: {e}",
-            args.file.display(),
-            world.time_s()
-        )
-    })?;
+    let bar = progress_bar(steps);
+    let mut done = 0;
+    while done < steps {
+        let n = PROGRESS_STEPS.min(steps - done);
+        let stepped = match &mut rig {
+            Some(r) => r.advance(&mut world, n),
+            None => crate::stepping::run(&mut world, n).map_err(|e| e.to_string()),
+        };
+        stepped.map_err(|e| {
+            anyhow::anyhow!(
+                "{}: step failed at t = {} s: {e}",
+                args.file.display(),
+                world.time_s()
+            )
+        })?;
+        done += n;
+        bar.set_position(done);
+    }
+    bar.finish_and_clear();
     let wall_seconds = started.elapsed().as_secs_f64();
+    let harvest = match (&rig, &machine) {
+        (Some(r), Some(m)) => {
+            let pods = r.tally(&world);
+            Some(HarvestLine {
+                machine: m.harvester.name.clone(),
+                machine_s: r.elapsed_s(&world),
+                pass_s: r.pass_steps(world.timestep_s()) as f64 * world.timestep_s(),
+                roots_cut: r.roots_let_go(),
+                loss_rate_pct: pods.loss_percent(),
+                unpicked_pct: pods.unpicked_percent(),
+                pods,
+            })
+        }
+        _ => None,
+    };
     let pod_z_mm: Vec<f64> = loaded
         .pods
         .iter()
@@ -125,11 +218,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             -pod_z_mm.iter().copied().fold(f64::MAX, f64::min),
         ],
         dt_s: world.timestep_s(),
-        steps: args.steps,
+        steps,
         simulated_s: world.time_s(),
         wall_seconds,
         threads: crate::stepping::run_threads(),
         digest: format!("{:016x}", world.digest()),
+        harvest,
     };
     if let Some(path) = &args.vtk {
         write_frame(path, &ParticleFrame::from_world(&world))?;

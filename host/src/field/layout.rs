@@ -21,7 +21,6 @@ use rand_chacha::ChaCha8Rng;
 use super::soil::{fill_soil, Grain};
 use super::FieldSpec;
 use crate::plant::overlap::SphereGrid;
-use crate::plant::topology::Kind;
 use crate::plant::{PlantError, PlantModel};
 
 /// Yaw angles tried per grown plant.
@@ -94,16 +93,7 @@ pub struct Field {
 impl Field {
     /// Pods in the field.
     pub fn pods(&self) -> usize {
-        self.plants
-            .iter()
-            .map(|p| {
-                p.model
-                    .bodies
-                    .iter()
-                    .filter(|b| b.kind == Kind::Pod)
-                    .count()
-            })
-            .sum()
+        self.plants.iter().map(|p| p.model.pods()).sum()
     }
 
     /// Spheres in the field: every plant's and every grain.

@@ -33,19 +33,45 @@ pub struct Loaded {
     pub grains: Vec<BodyId>,
     /// The bed's floor.
     pub floor: WallId,
+    /// The materials of plants (stems, stalks, leaves), pods and soil.
+    pub materials: FieldMaterials,
+}
+
+/// The field's materials in its world.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FieldMaterials {
+    /// Stems, stalks and leaves.
+    pub plant: MaterialId,
+    /// Pods.
+    pub pod: MaterialId,
+    /// Soil grains.
+    pub soil: MaterialId,
 }
 
 impl Field {
     /// Storage for this field's world: its bodies and spheres, and the effect history its
     /// soil pairs need.
     pub fn storage_lengths(&self, spec: &FieldSpec) -> StorageLengths {
-        let bodies: usize = self
-            .plants
-            .iter()
-            .map(|p| p.model.bodies.len())
-            .sum::<usize>()
+        self.storage_lengths_with(spec, 0, 0)
+    }
+
+    /// [`Field::storage_lengths`] with room for `extra_bodies` more bodies of
+    /// `extra_spheres` spheres in all (a machine).
+    pub fn storage_lengths_with(
+        &self,
+        spec: &FieldSpec,
+        extra_bodies: usize,
+        extra_spheres: usize,
+    ) -> StorageLengths {
+        let bodies: usize = extra_bodies
+            + self
+                .plants
+                .iter()
+                .map(|p| p.model.bodies.len())
+                .sum::<usize>()
             + self.grains.len();
-        let lengths = StorageLengths::for_spheres(bodies.max(1), self.spheres().max(1));
+        let spheres = self.spheres() + extra_spheres;
+        let lengths = StorageLengths::for_spheres(bodies.max(1), spheres.max(1));
         if soil_cohesion(spec).needs_history() {
             lengths.with_effects()
         } else {
@@ -145,6 +171,7 @@ impl Field {
             pods,
             grains,
             floor,
+            materials: FieldMaterials { plant, pod, soil },
         })
     }
 }

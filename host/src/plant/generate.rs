@@ -384,6 +384,11 @@ fn scaled_mass(spheres: &[ClumpSphere], mass_kg: f64) -> Result<MassProperties, 
 }
 
 impl PlantModel {
+    /// Number of pod bodies.
+    pub fn pods(&self) -> usize {
+        self.bodies.iter().filter(|b| b.kind == Kind::Pod).count()
+    }
+
     /// Number of bonds of the named set.
     pub fn bond_count(&self, set: &str) -> usize {
         self.bonds.iter().filter(|b| b.set == set).count()

