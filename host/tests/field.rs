@@ -19,7 +19,7 @@ use arachis::field::{Field, FieldSpec};
 use arachis::plant::overlap::SphereGrid;
 use arachis_core::prelude::*;
 
-use crate::cli_support::{arachis, REPO_ROOT};
+use crate::cli_support::{arachis, assert_refused, REPO_ROOT};
 
 /// Standard gravity used by the field's world, m/s².
 const G_M_S2: f64 = 9.81;
@@ -215,17 +215,16 @@ fn bad_field_input_exits_2_naming_file_line_and_key_and_writes_nothing() {
         assert!(text.contains(from), "{from}");
         let path = dir.path().join("field.toml");
         std::fs::write(&path, text.replacen(from, to, 1)).unwrap();
-        let out = arachis(&[
-            "field",
-            path.to_str().unwrap(),
-            "--vtk",
-            vtk.to_str().unwrap(),
-        ]);
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{to}: {err}");
-        assert!(err.contains(named), "{to}: {err}");
-        assert!(!err.contains("panicked"), "{err}");
-        assert!(!vtk.exists(), "{to}: a VTK file was written");
+        assert_refused(
+            &[
+                "field",
+                path.to_str().unwrap(),
+                "--vtk",
+                vtk.to_str().unwrap(),
+            ],
+            named,
+            &vtk,
+        );
     }
     // A line number for a key the file has.
     std::fs::write(

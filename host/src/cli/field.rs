@@ -9,7 +9,8 @@
 //! With `--harvester MACHINE.toml` (`crate::harvester`) the machine is mounted ahead of the
 //! bed and the K steps move it along the ridge (`--pass`: as many steps as the whole bed
 //! needs to pass the collector); the line then also holds the pods' ends so far
-//! (`harvest`: collected, unpicked, lost and where) and the loss rate.
+//! (`harvest`: collected, unpicked, lost and where) and the loss rate, and `--section`
+//! draws a slice through the first row from the side.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -21,10 +22,12 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use crate::arena::{OwnedBonds, OwnedStorage};
+use crate::field::layout::holes;
 use crate::field::picture::write_field_picture;
 use crate::field::soil::fill_fraction;
 use crate::field::FieldSpec;
 use crate::harvester::loss::LossTally;
+use crate::harvester::picture::write_section_picture;
 use crate::harvester::rig::Rig;
 use crate::harvester::HarvesterSpec;
 use crate::vtk::{write_frame, ParticleFrame};
@@ -49,6 +52,10 @@ pub struct Args {
     /// Harvester file (TOML, see `arachis::harvester`): mount it and drive it along the ridge.
     #[arg(long, value_name = "MACHINE.toml")]
     pub harvester: Option<PathBuf>,
+    /// With `--harvester`: write the side view of a slice through the first row after the
+    /// steps (soil, plants, pods and the machine), SVG.
+    #[arg(long, value_name = "FILE.svg", requires = "harvester")]
+    pub section: Option<PathBuf>,
     /// With `--harvester`: run the whole pass instead of `--steps`.
     #[arg(long, requires = "harvester", conflicts_with = "steps")]
     pub pass: bool,
@@ -103,7 +110,7 @@ struct FieldLine {
 #[derive(Debug, Serialize)]
 struct HarvestLine {
     machine: String,
-    /// Simulated time since the machine started, s.
+    /// Simulated time since the machine was mounted (its settling time included), s.
     machine_s: f64,
     /// Simulated time of the whole pass, s.
     pass_s: f64,
@@ -227,6 +234,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     };
     if let Some(path) = &args.vtk {
         write_frame(path, &ParticleFrame::from_world(&world))?;
+    }
+    if let (Some(path), Some(r)) = (&args.section, &rig) {
+        let row_y = holes(&spec).first().map_or(0.0, |h| h[1]);
+        let title = format!("{}, seed {}", spec.field.name, args.seed);
+        write_section_picture(path, &world, &loaded.materials, r.steel, row_y, &title)?;
     }
     if let Some(path) = &args.picture {
         let title = format!("{}, seed {}", spec.field.name, args.seed);

@@ -32,23 +32,17 @@ use arachis_core::units::LENGTH_M_TO_MM;
 use serde::Deserialize;
 
 use crate::plausible::{DENSITY_KG_M3, FRICTION, SHEAR_MODULUS_PA};
-use crate::study::error::{write_rejected, StudyError};
-use crate::study::key_path::KeyPath;
+use crate::study::error::{file_errors, StudyError};
 use crate::study::source::{decode_checked, read_checked, Source};
 use crate::variety::{check_spread, Spread, Variety, VarietyErrors};
 pub use layout::{Field, FieldError, PlacedPlant};
 
-/// Every error found in one field file (or in the variety file it names), in file order.
-#[derive(Debug, Clone, PartialEq)]
-pub struct FieldErrors(pub Vec<StudyError>);
-
-impl std::fmt::Display for FieldErrors {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write_rejected(f, "field file", "any plant was grown", &self.0)
-    }
-}
-
-impl std::error::Error for FieldErrors {}
+file_errors!(
+    /// Every error found in one field file (or in the variety file it names), in file order.
+    FieldErrors,
+    "field file",
+    "any plant was grown"
+);
 
 /// The ridge section and its planting.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -173,12 +167,8 @@ impl FieldSpec {
     /// Every value outside what a field can be built from, each at its key.
     fn problems(&self, source: &Source<'_>) -> Vec<StudyError> {
         let mut errors = Vec::new();
-        let mut bad = |path: &[&str], reason: String| {
-            let key = path
-                .iter()
-                .fold(KeyPath::root(), |k, segment| k.key(segment));
-            errors.push(source.error(&key, reason));
-        };
+        let mut bad =
+            |path: &[&str], reason: String| errors.push(source.error_at_keys(path, reason));
         let f = &self.field;
         let positive_below = |v: f64, max: f64| v.is_finite() && v > 0.0 && v <= max;
         for (key, v, max) in [

@@ -8,7 +8,7 @@ use std::path::Path;
 use arachis_core::units::LENGTH_M_TO_MM;
 
 use super::Field;
-use crate::plant::picture::{write_disc_picture, Disc, View};
+use crate::plant::picture::{organ_colour, write_disc_picture, Disc, View};
 
 /// Writes the plan view of `field` to `path` (must end in `.svg`).
 pub fn write_field_picture(path: &Path, field: &Field, title: &str) -> anyhow::Result<()> {
@@ -25,7 +25,7 @@ pub fn write_field_picture(path: &Path, field: &Field, title: &str) -> anyhow::R
                         x,
                         y,
                         s.radius_m * LENGTH_M_TO_MM,
-                        p.model.bodies[s.body].kind,
+                        organ_colour(p.model.bodies[s.body].kind),
                     ),
                 )
             })

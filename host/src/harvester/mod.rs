@@ -26,6 +26,7 @@
 pub mod loss;
 pub mod motion;
 pub mod parts;
+pub mod picture;
 pub mod rig;
 
 use std::path::Path;
@@ -35,21 +36,15 @@ use serde::Deserialize;
 
 use crate::field::ContactValues;
 use crate::plausible::FRICTION;
-use crate::study::error::{write_rejected, StudyError};
-use crate::study::key_path::KeyPath;
+use crate::study::error::{file_errors, StudyError};
 use crate::study::source::{decode_checked, read_checked, Source};
 
-/// Every error found in one harvester file, in file order.
-#[derive(Debug, Clone, PartialEq)]
-pub struct HarvesterErrors(pub Vec<StudyError>);
-
-impl std::fmt::Display for HarvesterErrors {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write_rejected(f, "harvester file", "anything was built", &self.0)
-    }
-}
-
-impl std::error::Error for HarvesterErrors {}
+file_errors!(
+    /// Every error found in one harvester file, in file order.
+    HarvesterErrors,
+    "harvester file",
+    "anything was built"
+);
 
 /// The machine as a whole.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -63,6 +58,9 @@ pub struct Machine {
     pub width_m: f64,
     /// Gap between the shovel's edge and the bed's front face at the start, m.
     pub start_gap_m: f64,
+    /// Time the field settles under gravity before the machine sets off, s (the bed is laid
+    /// out loose, [`crate::field::soil`]).
+    pub settle_s: f64,
 }
 
 /// A sinusoidal shake along a part's normal: d(t) = A sin(2π f t).
@@ -180,6 +178,8 @@ pub const MAX_ANGLE_DEG: f64 = 80.0;
 pub const MAX_DRUM_RPM: f64 = 5000.0;
 /// Most tooth rows accepted.
 pub const MAX_DRUM_ROWS: usize = 64;
+/// Longest settling time accepted, s.
+pub const MAX_SETTLE_S: f64 = 10.0;
 /// Highest shake frequency accepted, Hz.
 pub const MAX_SHAKE_HZ: f64 = 200.0;
 
@@ -197,12 +197,8 @@ impl HarvesterSpec {
     /// Every value outside what a harvester can be built from, each at its key.
     fn problems(&self, source: &Source<'_>) -> Vec<StudyError> {
         let mut errors = Vec::new();
-        let mut bad = |path: &[&str], reason: String| {
-            let key = path
-                .iter()
-                .fold(KeyPath::root(), |k, segment| k.key(segment));
-            errors.push(source.error(&key, reason));
-        };
+        let mut bad =
+            |path: &[&str], reason: String| errors.push(source.error_at_keys(path, reason));
         let within = |v: f64, lo: f64, hi: f64| v.is_finite() && v > lo && v <= hi;
         let m = &self.harvester;
         let (s, c, d, k) = (&self.shovel, &self.chain, &self.drum, &self.collector);
@@ -276,6 +272,12 @@ impl HarvesterSpec {
                     format!("must be > {lo} {unit} and at most {hi} {unit}, got {v}"),
                 );
             }
+        }
+        if !(m.settle_s.is_finite() && (0.0..=MAX_SETTLE_S).contains(&m.settle_s)) {
+            bad(
+                &["harvester", "settle_s"],
+                format!("must be 0 to {MAX_SETTLE_S} s, got {}", m.settle_s),
+            );
         }
         for (path, v) in [
             (["harvester", "start_gap_m"], m.start_gap_m),

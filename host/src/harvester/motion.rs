@@ -1,5 +1,6 @@
-//! How the machine moves: its frame travels along +x at the forward speed from where the
-//! run starts, and a shaking part is displaced along its normal by d(t) = A sin(2π f t).
+//! How the machine moves: it stands still while the field settles, then its frame travels
+//! along +x at the forward speed, and a shaking part is displaced along its normal by
+//! d(τ) = A sin(2π f τ), τ the machine's time since it set off.
 //!
 //! The core moves a kinematic body with the velocity it is given. The rig steps in chunks
 //! and, before each chunk, gives every part the velocity that takes it from where it *is*
@@ -9,8 +10,8 @@
 //!
 //! ```
 //! use arachis::harvester::motion::Travel;
-//! let t = Travel { start_x_m: -0.3, speed_m_s: 1.0 };
-//! assert!((t.origin_x_m(0.5) - 0.2).abs() < 1e-12);
+//! let t = Travel { start_x_m: -0.3, speed_m_s: 1.0, settle_s: 0.1 };
+//! assert!((t.origin_x_m(0.6) - 0.2).abs() < 1e-12);
 //! ```
 
 use super::parts::Part;
@@ -24,17 +25,24 @@ pub struct Travel {
     pub start_x_m: f64,
     /// Forward speed, m/s.
     pub speed_m_s: f64,
+    /// Time the machine stands still first, s.
+    pub settle_s: f64,
 }
 
 impl Travel {
-    /// x of the machine's origin at `t_s`, m: x0 + v t.
+    /// The machine's time at run time `t_s`: τ = max(0, t − settle), s.
+    pub fn machine_s(&self, t_s: f64) -> f64 {
+        (t_s - self.settle_s).max(0.0)
+    }
+
+    /// x of the machine's origin at `t_s`, m: x0 + v τ.
     pub fn origin_x_m(&self, t_s: f64) -> f64 {
-        self.start_x_m + self.speed_m_s * t_s
+        self.start_x_m + self.speed_m_s * self.machine_s(t_s)
     }
 
     /// Where `part`'s centre is at `t_s`, world frame, m.
     pub fn centre_m(&self, part: &Part, t_s: f64) -> [f64; 3] {
-        let d = shake_m(part.shake, t_s);
+        let d = shake_m(part.shake, self.machine_s(t_s));
         let x0 = self.origin_x_m(t_s);
         [
             x0 + part.centre_m[0] + d * part.shake_normal[0],
@@ -88,6 +96,7 @@ mod tests {
         let travel = Travel {
             start_x_m: 0.0,
             speed_m_s: 1.0,
+            settle_s: 0.0,
         };
         let period = 1.0 / 9.0;
         let chunk = period / 100.0;

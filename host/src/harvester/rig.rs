@@ -8,7 +8,8 @@
 //! harvest's [`POD_STEEL_CONTACT`] and [`STALK_STEEL_CONTACT`]) and the soil as the file
 //! says.
 //!
-//! [`Rig::advance`] runs one chunk: each part is given the velocity that brings it where the
+//! The machine stands still for the file's settling time while the loose bed falls into
+//! place, then sets off. [`Rig::advance`] runs one chunk: each part is given the velocity that brings it where the
 //! motion law puts it at the chunk's end ([`super::motion`]), the world steps, each root the
 //! shovel's edge has passed is let go (the taproot is cut), and every pod is checked
 //! ([`super::loss`]). Pods are attached while a chain of live bonds joins them to their
@@ -49,6 +50,8 @@ pub struct Rig {
     pub layout: Layout,
     /// Its travel.
     pub travel: Travel,
+    /// The steel of its parts.
+    pub steel: MaterialId,
     parts: Vec<BodyId>,
     roots: Vec<(BodyId, f64, bool)>,
     pods: Vec<Watched>,
@@ -93,6 +96,7 @@ impl Rig {
         let travel = Travel {
             start_x_m: field.bed_min_m[0] - spec.harvester.start_gap_m,
             speed_m_s: spec.harvester.forward_speed_m_s,
+            settle_s: spec.harvester.settle_s,
         };
         let start_time_s = world.time_s();
         let mut parts = Vec::with_capacity(layout.parts.len());
@@ -122,7 +126,7 @@ impl Rig {
                 .add_clump_with_mass(
                     &ClumpSpec {
                         spheres: &spheres,
-                        velocity_m_s: [travel.speed_m_s, 0.0, 0.0],
+                        velocity_m_s: [0.0; 3],
                         angular_velocity_rad_s: p.spin_rad_s,
                     },
                     &MassProperties {
@@ -157,12 +161,14 @@ impl Rig {
                 });
             }
         }
-        // The whole bed has passed over the shovel, up the chain and past the collector.
+        // The field has settled, then the whole bed has passed over the shovel, up the chain
+        // and past the collector.
         let travel_m = field.bed_max_m[0] - layout.opening.x_m.0 - travel.start_x_m;
-        let end_time_s = start_time_s + travel_m / travel.speed_m_s;
+        let end_time_s = start_time_s + travel.settle_s + travel_m / travel.speed_m_s;
         Ok(Rig {
             layout,
             travel,
+            steel,
             parts,
             roots,
             pods,

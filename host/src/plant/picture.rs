@@ -27,11 +27,11 @@ const FRAME_PX: u32 = 110;
 /// Empty room round the plant, mm.
 const ROOM_MM: f64 = 20.0;
 
-/// One sphere as drawn: the two coordinates of its centre, its radius (mm), its organ.
-pub(crate) type Disc = (f64, f64, f64, Kind);
+/// One sphere as drawn: the two coordinates of its centre, its radius (mm), its colour.
+pub(crate) type Disc = (f64, f64, f64, RGBColor);
 
 /// The colour of an organ.
-fn colour(kind: Kind) -> RGBColor {
+pub(crate) fn organ_colour(kind: Kind) -> RGBColor {
     match kind {
         Kind::MainStem | Kind::LateralStem => RGBColor(60, 120, 50),
         Kind::PodStalk => RGBColor(140, 90, 40),
@@ -47,7 +47,12 @@ pub fn write_plant_picture(path: &Path, plant: &PlantModel, title: &str) -> anyh
         .iter()
         .map(|s| {
             let [x, _, z] = s.centre_m.map(|c| c * LENGTH_M_TO_MM);
-            (x, z, s.radius_m * LENGTH_M_TO_MM, plant.bodies[s.body].kind)
+            (
+                x,
+                z,
+                s.radius_m * LENGTH_M_TO_MM,
+                organ_colour(plant.bodies[s.body].kind),
+            )
         })
         .collect();
     let view = View {
@@ -122,9 +127,9 @@ pub(crate) fn write_disc_picture(
                 .map_err(err)?;
         }
         chart
-            .draw_series(discs.iter().map(|&(x, z, r, kind)| {
+            .draw_series(discs.iter().map(|&(x, z, r, colour)| {
                 let radius_px = ((r * px_per_mm).round() as i32).max(1);
-                Circle::new((x, z), radius_px, colour(kind).filled())
+                Circle::new((x, z), radius_px, colour.filled())
             }))
             .map_err(err)?;
         root.present().map_err(err)?;

@@ -90,3 +90,23 @@ pub(crate) fn write_rejected(
     }
     Ok(())
 }
+
+/// Declares the error type of an input file that is checked whole: a newtype over its
+/// [`StudyError`]s in file order, shown by [`write_rejected`] as "`$what` rejected before
+/// `$before`: …".
+macro_rules! file_errors {
+    ($(#[$doc:meta])* $name:ident, $what:literal, $before:literal) => {
+        $(#[$doc])*
+        #[derive(Debug, Clone, PartialEq)]
+        pub struct $name(pub Vec<$crate::study::error::StudyError>);
+
+        impl std::fmt::Display for $name {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                $crate::study::error::write_rejected(f, $what, $before, &self.0)
+            }
+        }
+
+        impl std::error::Error for $name {}
+    };
+}
+pub(crate) use file_errors;

@@ -73,6 +73,14 @@ impl<'i> Source<'i> {
         }
     }
 
+    /// [`Source::error`] at the table path `keys` (e.g. `["soil", "depth_m"]`).
+    pub fn error_at_keys(&self, keys: &[&str], reason: impl Into<String>) -> StudyError {
+        let key = keys
+            .iter()
+            .fold(KeyPath::root(), |k, segment| k.key(segment));
+        self.error(&key, reason)
+    }
+
     /// The span of `key`'s name (for a table key) or of the element (for an array index);
     /// for a path the file does not hold in full, the span of its longest held prefix.
     pub fn span_of(&self, key: &KeyPath) -> Option<Range<usize>> {

@@ -36,21 +36,15 @@ use serde::Deserialize;
 use crate::plant::topology::{BondSet, MAX_POD_SPHERES};
 use crate::plant::{PlantError, PlantModel, Topology};
 use crate::plausible::PLANT_ORGAN_MM;
-use crate::study::error::{write_rejected, StudyError};
-use crate::study::key_path::KeyPath;
+use crate::study::error::{file_errors, StudyError};
 use crate::study::source::{decode_checked, read_checked, Source};
 
-/// Every error found in one variety file, in file order (never empty when returned).
-#[derive(Debug, Clone, PartialEq)]
-pub struct VarietyErrors(pub Vec<StudyError>);
-
-impl std::fmt::Display for VarietyErrors {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write_rejected(f, "variety file", "any plant was grown", &self.0)
-    }
-}
-
-impl std::error::Error for VarietyErrors {}
+file_errors!(
+    /// Every error found in one variety file, in file order (never empty when returned).
+    VarietyErrors,
+    "variety file",
+    "any plant was grown"
+);
 
 /// Draws of a [`Spread`] are truncated at this many SDs from the mean.
 pub const TRUNCATION_SDS: f64 = 3.0;
@@ -192,12 +186,8 @@ impl Variety {
     /// Every value outside what a plant can be grown from, each at its key.
     fn problems(&self, source: &Source<'_>) -> Vec<StudyError> {
         let mut errors = Vec::new();
-        let mut bad = |path: &[&str], reason: String| {
-            let key = path
-                .iter()
-                .fold(KeyPath::root(), |k, segment| k.key(segment));
-            errors.push(source.error(&key, reason));
-        };
+        let mut bad =
+            |path: &[&str], reason: String| errors.push(source.error_at_keys(path, reason));
         let organ = |v: f64| v.is_finite() && PLANT_ORGAN_MM.check(v).is_ok() && v > 0.0;
         let organ_rule = format!(
             "must be a plant organ's size, {} to {} mm",

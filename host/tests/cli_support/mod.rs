@@ -63,3 +63,19 @@ pub fn replay(command: &str, study: &str, runs: &str, args: &[&str]) -> String {
     );
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
+
+/// Runs `arachis args` and asserts it refused its input as a user should see it: exit 2, no
+/// panic, `named` in the message, and no file at `unwritten`. Returns the message.
+pub fn assert_refused(args: &[&str], named: &str, unwritten: &std::path::Path) -> String {
+    let out = arachis(args);
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert!(err.contains(named), "{args:?}: {named} not named in: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(
+        !unwritten.exists(),
+        "{args:?}: {} was written",
+        unwritten.display()
+    );
+    err
+}
