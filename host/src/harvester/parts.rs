@@ -97,6 +97,20 @@ pub struct Layout {
     pub half_width_m: f64,
 }
 
+/// Slack allowed when counting how many pitches fit in a length, as a fraction of a pitch:
+/// 0.6 m / 0.05 m is 11.999999999999998 in floating point, and is meant as 12.
+const FIT_SLACK: f64 = 1e-9;
+
+/// How many whole `pitch`es fit in `length` (both in one unit).
+fn pitches_in(length: f64, pitch: f64) -> f64 {
+    (length / pitch + FIT_SLACK).floor()
+}
+
+/// How many `pitch`es cover `length`, rounded up.
+fn pitches_over(length: f64, pitch: f64) -> f64 {
+    (length / pitch - FIT_SLACK).ceil()
+}
+
 /// Direction down a slope of `angle_deg` rearwards and up: (−cos α, 0, sin α).
 fn slope(angle_deg: f64) -> [f64; 3] {
     let (s, c) = angle_deg.to_radians().sin_cos();
@@ -116,7 +130,7 @@ fn along(p: [f64; 3], d: [f64; 3], k: f64) -> [f64; 3] {
 /// y of the spheres of a row of touching spheres of radius `r_m` over `width_m`: the two
 /// ends and evenly spaced points between, no further apart than one diameter.
 fn across_touching(width_m: f64, r_m: f64) -> Vec<f64> {
-    let n = (width_m / (2.0 * r_m)).ceil() as usize + 1;
+    let n = pitches_over(width_m, 2.0 * r_m) as usize + 1;
     spaced(width_m, n)
 }
 
@@ -131,7 +145,7 @@ fn spaced(width_m: f64, n: usize) -> Vec<f64> {
 
 /// Teeth across one drum row at the tooth pitch, centred.
 fn teeth_across(width_m: f64, pitch_m: f64) -> Vec<f64> {
-    let n = (width_m / pitch_m).floor() as usize + 1;
+    let n = pitches_in(width_m, pitch_m) as usize + 1;
     spaced(pitch_m * (n - 1) as f64, n)
 }
 
@@ -146,7 +160,7 @@ pub fn row_counts(spec: &HarvesterSpec) -> Vec<([&'static str; 2], usize)> {
             0
         }
     };
-    let touching = |r_mm: f64| count((w / (2.0 * r_mm / LENGTH_M_TO_MM)).ceil() + 1.0);
+    let touching = |r_mm: f64| count(pitches_over(w, 2.0 * r_mm / LENGTH_M_TO_MM) + 1.0);
     vec![
         (
             ["shovel", "sphere_radius_mm"],
@@ -158,7 +172,7 @@ pub fn row_counts(spec: &HarvesterSpec) -> Vec<([&'static str; 2], usize)> {
         ),
         (
             ["drum", "tooth_pitch_mm"],
-            count((w / (spec.drum.tooth_pitch_mm / LENGTH_M_TO_MM)).floor() + 1.0),
+            count(pitches_in(w, spec.drum.tooth_pitch_mm / LENGTH_M_TO_MM) + 1.0),
         ),
     ]
 }
@@ -187,7 +201,7 @@ impl Layout {
         let r_s = mm(s.sphere_radius_mm);
         let edge = [0.0, 0.0, -s.depth_m];
         let ys = across_touching(w, r_s);
-        let rows = (s.length_m / (2.0 * r_s)).floor() as usize + 1;
+        let rows = pitches_in(s.length_m, 2.0 * r_s) as usize + 1;
         for k in 0..rows {
             let surface = along(edge, d_s, k as f64 * 2.0 * r_s);
             let mut p = row(PartKind::Shovel, along(surface, n_s, -r_s), &ys, r_s);
@@ -202,7 +216,7 @@ impl Layout {
         let r_c = mm(c.rod_diameter_mm) / 2.0;
         let pitch = mm(c.rod_pitch_mm);
         let ys = across_touching(w, r_c);
-        let rods = ((c.length_m / pitch).floor() as usize).max(1);
+        let rods = (pitches_in(c.length_m, pitch) as usize).max(1);
         let mut last_rod = shovel_top_m;
         for j in 0..rods {
             let surface = along(shovel_top_m, d_c, pitch / 2.0 + j as f64 * pitch);
@@ -373,6 +387,35 @@ mod tests {
         let lowest_tooth = a[2] - spec.drum.radius_m - spec.drum.tooth_radius_mm / LENGTH_M_TO_MM;
         let gap = lowest_tooth - (last_rod.centre_m[2] + last_rod.radius_m);
         assert!((gap - spec.drum.clearance_m).abs() < 1e-12, "gap {gap}");
+    }
+
+    /// The shipped machine's counts, worked by hand: 0.25 m of shovel in 10 mm rows is 25
+    /// pitches, 26 rows; 0.6 m in 10 mm is 60 pitches, 61 spheres; 0.8 m of chain at 40 mm
+    /// is 20 rods of ⌈600/10.5⌉ + 1 = 59 spheres; 0.6 m at 50 mm is 12 pitches, 13 teeth.
+    #[test]
+    fn the_shipped_machine_has_its_hand_worked_counts() {
+        let layout = Layout::of(&shipped());
+        let count = |kind| layout.parts.iter().filter(|p| p.kind == kind).count();
+        let per_row = |kind| {
+            layout
+                .parts
+                .iter()
+                .find(|p| p.kind == kind)
+                .map(|p| p.spheres_m.len())
+        };
+        assert_eq!(
+            (count(PartKind::Shovel), per_row(PartKind::Shovel)),
+            (26, Some(61))
+        );
+        assert_eq!(
+            (count(PartKind::Chain), per_row(PartKind::Chain)),
+            (20, Some(59))
+        );
+        assert_eq!(
+            (count(PartKind::Drum), per_row(PartKind::Drum)),
+            (6, Some(13))
+        );
+        assert_eq!(layout.spheres(), 26 * 61 + 20 * 59 + 6 * 13);
     }
 
     #[test]
