@@ -188,7 +188,7 @@ fn teeth(machine: &Machine, axis_z_m: f64, phase: f64) -> Vec<[f64; 3]> {
 }
 
 /// Union–find root with path halving.
-fn root(parent: &mut [usize], mut i: usize) -> usize {
+pub(crate) fn root(parent: &mut [usize], mut i: usize) -> usize {
     while parent[i] != i {
         parent[i] = parent[parent[i]];
         i = parent[i];

@@ -9,16 +9,16 @@
 //! says.
 //!
 //! The machine stands still for the file's settling time while the loose bed falls into
-//! place, then sets off. [`Rig::advance`] runs one chunk: each part is given the velocity that brings it where the
-//! motion law puts it at the chunk's end ([`super::motion`]), the world steps, each root the
-//! shovel's edge has passed is let go (the taproot is cut), and every pod is checked
-//! ([`super::loss`]). Pods are attached while a chain of live bonds joins them to their
+//! place, then sets off. [`Rig::advance`] runs one chunk: each part is given the velocity
+//! that brings it where the motion law puts it at the chunk's end ([`super::motion`]), the
+//! world steps, each root the shovel's edge has passed is let go (the taproot is cut), and
+//! every pod is checked ([`super::loss`]). Pods are attached while a chain of live bonds joins them to their
 //! plant's root. A collected pod is held in the collector and travels with the machine; a
 //! pod that went down is held where it lies: neither costs more.
 
 use arachis_core::prelude::*;
 use arachis_core::scenario::materials::STEEL;
-use arachis_core::units::{LENGTH_M_TO_MM, VELOCITY_M_S_TO_MM_MS};
+use arachis_core::units::LENGTH_M_TO_MM;
 
 use super::loss::{at_end, check_detached, LossTally, PodEnd};
 use super::motion::{tracking_velocity_m_s, Travel};
@@ -26,7 +26,7 @@ use super::parts::{Layout, PartKind};
 use super::HarvesterSpec;
 use crate::field::world::{Loaded, TIMESTEP_SAFETY};
 use crate::field::Field;
-use crate::harvest::pass::{POD_STEEL_CONTACT, STALK_STEEL_CONTACT};
+use crate::harvest::pass::{root, POD_STEEL_CONTACT, STALK_STEEL_CONTACT};
 
 /// Steps between checks of the pods and updates of the parts' velocities (a 9 Hz shake is
 /// then followed by about 500 chords per period at the field's 8e-7 s step).
@@ -257,13 +257,6 @@ impl Rig {
     fn attached<S: Scalar>(&self, world: &World<'_, S>) -> Vec<bool> {
         let n = world.bodies().len();
         let mut parent: Vec<usize> = (0..n).collect();
-        fn root(parent: &mut [usize], mut i: usize) -> usize {
-            while parent[i] != i {
-                parent[i] = parent[parent[i]];
-                i = parent[i];
-            }
-            i
-        }
         let spheres = world.spheres();
         for b in world.bonds().bonds() {
             let i = spheres[b.sphere_a as usize].body as usize;
@@ -314,14 +307,5 @@ impl Rig {
             .filter(|(p, _)| p.kind == kind)
             .map(|(_, &id)| id)
             .collect()
-    }
-
-    /// Velocity of body `id`, m/s.
-    pub fn velocity_m_s<S: Scalar>(world: &World<'_, S>, id: BodyId) -> [f64; 3] {
-        world
-            .body(id)
-            .velocity
-            .to_f64()
-            .map(|v| v / VELOCITY_M_S_TO_MM_MS)
     }
 }
