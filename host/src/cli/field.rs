@@ -18,7 +18,6 @@ use std::time::Instant;
 use anyhow::Context;
 use arachis_core::prelude::*;
 use arachis_core::units::LENGTH_M_TO_MM;
-use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use crate::arena::{OwnedBonds, OwnedStorage};
@@ -65,17 +64,6 @@ pub struct Args {
 const MAX_STEPS: u64 = 100_000_000;
 /// Steps between updates of the progress bar (a whole number of harvester chunks).
 const PROGRESS_STEPS: u64 = 40 * crate::harvester::rig::CHUNK_STEPS;
-
-fn progress_bar(steps: u64) -> ProgressBar {
-    // The default draw target is stderr, hidden when stderr is not a terminal.
-    let bar = ProgressBar::new(steps);
-    if let Ok(style) =
-        ProgressStyle::with_template("field {bar:40} {pos}/{len} steps  {per_sec}  eta {eta}")
-    {
-        bar.set_style(style);
-    }
-    bar
-}
 
 /// The printed line.
 #[derive(Debug, Serialize)]
@@ -160,7 +148,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         _ => args.steps,
     };
     let started = Instant::now();
-    let bar = progress_bar(steps);
+    let bar = super::steps_bar("field", steps);
     let mut done = 0;
     while done < steps {
         let n = PROGRESS_STEPS.min(steps - done);

@@ -116,3 +116,15 @@ impl Cli {
         }
     }
 }
+
+/// A progress bar over `steps` steps, labelled `label`, with rate, time left and a message.
+/// Its default draw target is stderr, hidden when stderr is not a terminal.
+pub(crate) fn steps_bar(label: &str, steps: u64) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(steps);
+    let template =
+        format!("{label} {{bar:40}} {{pos}}/{{len}} steps  {{per_sec}}  eta {{eta}}  {{msg}}");
+    if let Ok(style) = indicatif::ProgressStyle::with_template(&template) {
+        bar.set_style(style);
+    }
+    bar
+}

@@ -30,7 +30,6 @@ use arachis_core::scenario::materials::{POD, POD_POD, POD_STEEL};
 use arachis_core::scenario::measure::{bed_height_mm, com_height_mm};
 use arachis_core::timestep::{max_stable_dt_s, rayleigh_time_s, MAX_RAYLEIGH_FRACTION};
 use arachis_core::units::{ENERGY_J_TO_MJ, LENGTH_M_TO_MM, TIME_S_TO_MS};
-use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use crate::arena::OwnedStorage;
@@ -180,17 +179,6 @@ fn frame_steps(args: &Args) -> Vec<u64> {
     (0..k).map(|i| i * args.steps / (k - 1)).collect()
 }
 
-fn progress_bar(steps: u64) -> ProgressBar {
-    // The default draw target is stderr, hidden when stderr is not a terminal.
-    let bar = ProgressBar::new(steps);
-    if let Ok(style) =
-        ProgressStyle::with_template("pour {bar:40} {pos}/{len} steps  {per_sec}  eta {eta}  {msg}")
-    {
-        bar.set_style(style);
-    }
-    bar
-}
-
 /// DESIGN §8's pod–pod and pod–steel pairs in the requested conventions, with or without
 /// rolling friction.
 fn pairs(args: &Args) -> (PairSpec, PairSpec) {
@@ -221,7 +209,7 @@ fn pour<S: Scalar>(args: &Args) -> anyhow::Result<(PourReport, Vec<ParticleFrame
         .with_effects_for(&[pod_pod, pod_steel]);
     let mut arenas = OwnedStorage::<S>::new(lengths);
     let mut stepper = Stepper::<S>::new(default_threads())?;
-    let bar = progress_bar(args.steps);
+    let bar = super::steps_bar("pour", args.steps);
     bar.set_message("inserting");
     let started = Instant::now();
     let mut world = bed

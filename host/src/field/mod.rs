@@ -79,6 +79,29 @@ pub struct ContactValues {
     pub rolling_friction: f64,
 }
 
+impl ContactValues {
+    /// Each value outside its range, with its key: restitution in (0, 1], friction and
+    /// rolling friction as [`FRICTION`] allows.
+    pub fn problems(&self) -> Vec<(&'static str, String)> {
+        let mut out = Vec::new();
+        if !(self.restitution.is_finite() && self.restitution > 0.0 && self.restitution <= 1.0) {
+            out.push((
+                "restitution",
+                format!("must lie in (0, 1], got {}", self.restitution),
+            ));
+        }
+        for (key, v) in [
+            ("friction", self.friction),
+            ("rolling_friction", self.rolling_friction),
+        ] {
+            if let Err(why) = FRICTION.check(v) {
+                out.push((key, why));
+            }
+        }
+        out
+    }
+}
+
 /// The soil contacts: grain–grain, grain–pod and grain–plant (stems, stalks, leaves).
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -262,19 +285,8 @@ impl FieldSpec {
             ("pod", s.contacts.pod),
             ("plant", s.contacts.plant),
         ] {
-            if !(c.restitution.is_finite() && c.restitution > 0.0 && c.restitution <= 1.0) {
-                bad(
-                    &["soil", "contacts", name, "restitution"],
-                    format!("must lie in (0, 1], got {}", c.restitution),
-                );
-            }
-            for (key, v) in [
-                ("friction", c.friction),
-                ("rolling_friction", c.rolling_friction),
-            ] {
-                if let Err(why) = FRICTION.check(v) {
-                    bad(&["soil", "contacts", name, key], why);
-                }
+            for (key, why) in c.problems() {
+                bad(&["soil", "contacts", name, key], why);
             }
         }
         errors

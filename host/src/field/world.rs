@@ -164,8 +164,7 @@ impl Field {
                 soil,
             ))
             .map_err(|e| core(&e))?;
-        let dt = TIMESTEP_SAFETY * world.max_timestep_s().min(world.bond_max_timestep_s());
-        world.set_timestep_s(dt).map_err(|e| core(&e))?;
+        set_safe_timestep(world)?;
         Ok(Loaded {
             roots,
             pods,
@@ -174,6 +173,13 @@ impl Field {
             materials: FieldMaterials { plant, pod, soil },
         })
     }
+}
+
+/// Sets `world`'s time step to [`TIMESTEP_SAFETY`] × the smaller of its contact bound
+/// (Rayleigh) and its bond bound; again whenever bodies are added.
+pub fn set_safe_timestep<S: Scalar>(world: &mut World<'_, S>) -> Result<(), String> {
+    let dt = TIMESTEP_SAFETY * world.max_timestep_s().min(world.bond_max_timestep_s());
+    world.set_timestep_s(dt).map_err(|e| e.to_string())
 }
 
 /// The effects of every soil pair: JKR cohesion of the field file's work of adhesion.

@@ -35,7 +35,6 @@ use arachis_core::units::LENGTH_M_TO_MM;
 use serde::Deserialize;
 
 use crate::field::ContactValues;
-use crate::plausible::FRICTION;
 use crate::study::error::{file_errors, StudyError};
 use crate::study::source::{decode_checked, read_checked, Source};
 
@@ -357,20 +356,8 @@ impl HarvesterSpec {
                 );
             }
         }
-        let sc = self.steel_contacts.soil;
-        if !(sc.restitution.is_finite() && sc.restitution > 0.0 && sc.restitution <= 1.0) {
-            bad(
-                &["steel_contacts", "soil", "restitution"],
-                format!("must lie in (0, 1], got {}", sc.restitution),
-            );
-        }
-        for (key, v) in [
-            ("friction", sc.friction),
-            ("rolling_friction", sc.rolling_friction),
-        ] {
-            if let Err(why) = FRICTION.check(v) {
-                bad(&["steel_contacts", "soil", key], why);
-            }
+        for (key, why) in self.steel_contacts.soil.problems() {
+            bad(&["steel_contacts", "soil", key], why);
         }
         errors
     }

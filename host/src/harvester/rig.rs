@@ -24,7 +24,7 @@ use super::loss::{at_end, check_detached, LossTally, PodEnd};
 use super::motion::{tracking_velocity_m_s, Travel};
 use super::parts::{Layout, PartKind};
 use super::HarvesterSpec;
-use crate::field::world::{Loaded, TIMESTEP_SAFETY};
+use crate::field::world::{set_safe_timestep, Loaded};
 use crate::field::Field;
 use crate::harvest::pass::{root, POD_STEEL_CONTACT, STALK_STEEL_CONTACT};
 
@@ -140,8 +140,7 @@ impl Rig {
             world.set_body_kinematic(id).map_err(|e| core(&e))?;
             parts.push(id);
         }
-        let dt = TIMESTEP_SAFETY * world.max_timestep_s().min(world.bond_max_timestep_s());
-        world.set_timestep_s(dt).map_err(|e| core(&e))?;
+        set_safe_timestep(world)?;
         let roots = field
             .plants
             .iter()
