@@ -258,3 +258,93 @@ fn f64_reference_runs_the_same_bond_code() {
     let f = w.bonds().bonds()[0].normal_force;
     assert!(f < 0.0, "stretched bond pulls: Fn = {f}");
 }
+
+/// Dumbbells in the thread-count test: enough bonds for three parts of the bond stage.
+const DUMBBELLS: usize = 3 * arachis_core::step::bonds::MIN_BONDS_PER_PART + 64;
+
+/// `DUMBBELLS` free pairs of touching R 1 mm spheres, 10 mm apart on a grid, each pair bonded
+/// (σc 2e4 Pa: a bond breaks at 0.02 mm of stretch) and flying apart along x at its own speed,
+/// 0.1–1.0 m/s by a scrambled index, so breaks fall at many steps all through the bond table.
+fn dumbbells<'a>(
+    owned: &'a mut Owned<Fx>,
+    bonds: &'a mut [Bond<Fx>],
+    log: &'a mut [BondBreak<Fx>],
+) -> World<'a, Fx> {
+    let mut w = World::new(owned.storage()).unwrap();
+    w.attach_bond_storage(BondStorage { bonds, log }).unwrap();
+    let m = w.add_material(STALK).unwrap();
+    w.set_pair(m, m, PairSpec::hertz_mindlin(0.21, 0.71, 0.58))
+        .unwrap();
+    for k in 0..DUMBBELLS {
+        let (y, z) = ((k % 40) as f64 * 1e-2, (k / 40) as f64 * 1e-2);
+        let speed = 0.1 + 0.9 * ((k * 37) % 100) as f64 / 100.0;
+        for (x, v) in [(0.0, -speed / 2.0), (2e-3, speed / 2.0)] {
+            let mut s = SphereSpec::at_rest(m, 1e-3, [x, y, z]);
+            s.velocity_m_s = [v, 0.0, 0.0];
+            w.add_sphere(s).unwrap();
+        }
+    }
+    let s = w.add_bond_set(&set(2e4)).unwrap();
+    let rule = FormationRule {
+        set: s,
+        materials: None,
+        max_gap_m: 1e-6,
+    };
+    assert_eq!(w.form_bonds(&rule).unwrap() as usize, DUMBBELLS);
+    w.set_timestep_s(DT_S).unwrap();
+    w
+}
+
+/// The bond stage splits its bonds over the threads (issue 16): loads, breaks, the break log
+/// and the compacted table are the same bits for 1, 2, 3, 4 and 7 threads. Breaks fall in
+/// every third of the table, so every part meets some.
+#[test]
+fn bond_loads_and_breaks_are_the_same_bits_for_any_thread_count() {
+    let run = |threads: usize| {
+        let mut owned = Owned::<Fx>::new(2 * DUMBBELLS, 2 * DUMBBELLS);
+        let mut b = vec![Bond::default(); DUMBBELLS];
+        let mut l = vec![BondBreak::default(); DUMBBELLS];
+        let mut w = dumbbells(&mut owned, &mut b, &mut l);
+        common::run_threaded(&mut w, 300, threads);
+        let log: Vec<(u64, u32)> = w
+            .bonds()
+            .breaks()
+            .iter()
+            .map(|r| (r.step, r.bond_id))
+            .collect();
+        (w.digest(), log, w.bonds().bonds().len())
+    };
+    let (digest, log, left) = run(1);
+    let third = DUMBBELLS as u32 / 3;
+    let broke_in = |lo: u32, hi: u32| log.iter().filter(|(_, id)| (lo..hi).contains(id)).count();
+    println!(
+        "{} of {DUMBBELLS} bonds broke in 300 steps, {left} hold; by third of the table: {} {} {}",
+        log.len(),
+        broke_in(0, third),
+        broke_in(third, 2 * third),
+        broke_in(2 * third, u32::MAX)
+    );
+    assert!(left > 0 && !log.is_empty(), "some bonds break, some hold");
+    assert_eq!(left + log.len(), DUMBBELLS);
+    for (lo, hi) in [(0, third), (third, 2 * third), (2 * third, u32::MAX)] {
+        assert!(broke_in(lo, hi) > 0, "no break among bonds {lo}..{hi}");
+    }
+    let steps: std::collections::BTreeSet<u64> = log.iter().map(|(s, _)| *s).collect();
+    assert!(
+        steps.len() > 10,
+        "breaks fall at {} steps only",
+        steps.len()
+    );
+    for threads in [2, 3, 4, 7] {
+        let (d, l, n) = run(threads);
+        let first_difference = l.iter().zip(&log).position(|(a, b)| a != b);
+        assert!(
+            l == log,
+            "break log, {threads} threads: {} against {} records, first difference at {first_difference:?}",
+            l.len(),
+            log.len()
+        );
+        assert_eq!(n, left, "bonds left, {threads} threads");
+        assert_eq!(d, digest, "digest, {threads} threads");
+    }
+}

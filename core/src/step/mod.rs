@@ -12,8 +12,8 @@
 //!    with rolling friction applied so it never reverses ω; clumps through their quaternion;
 //! 6. [`wall_motion`]: walls advance at their prescribed velocity.
 //!
-//! Stages 3 and 5 run in [`parts`] over disjoint body ranges, on as many threads as the
-//! caller's runner has. In fixed point, forces are summed as exact integers, so the result
+//! Stages 3 and 5 run in [`parts`] over disjoint body ranges, and stage 4 over runs of bonds,
+//! on as many threads as the caller's runner has. In fixed point, forces are summed as exact integers, so the result
 //! does not depend on the order of contacts or on the number of parts (DESIGN §5); the order
 //! is fixed anyway, so a one-part `f64` run is reproducible too.
 

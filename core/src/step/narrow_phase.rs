@@ -23,7 +23,7 @@
 //! any fixed-point overflow into [`StepError::Overflow`] naming both parties.
 
 use super::neighbour_list::{is_wall, key_of, LIVE_FLAG};
-use super::parts::PairTable;
+use super::parts::{widen, PairTable};
 use crate::body::{Body, BodyForce, Sphere};
 use crate::bond::Bond;
 use crate::contact::fused::{evaluate_fast, FusedContact, FusedLoad, Geometry};
@@ -350,12 +350,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         if b < self.bodies.end {
             &mut self.own[b - self.bodies.start]
         } else {
-            if self.beyond_touched.is_empty() {
-                self.beyond_touched = b..b + 1;
-            } else {
-                self.beyond_touched.start = self.beyond_touched.start.min(b);
-                self.beyond_touched.end = self.beyond_touched.end.max(b + 1);
-            }
+            widen(&mut self.beyond_touched, b);
             &mut self.beyond[b]
         }
     }

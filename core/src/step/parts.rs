@@ -85,6 +85,27 @@ pub(crate) fn split_ranges(
     }
 }
 
+/// Widen `range` to cover index `i` (an empty range becomes `i..i + 1`): the hull of the
+/// bodies a part wrote in its scratch arena.
+#[inline(always)]
+pub(crate) fn widen(range: &mut Range<usize>, i: usize) {
+    if range.start >= range.end {
+        *range = i..i + 1;
+    } else {
+        range.start = range.start.min(i);
+        range.end = range.end.max(i + 1);
+    }
+}
+
+/// The hull of two ranges (an empty range adds nothing).
+pub(crate) fn hull(a: Range<usize>, b: Range<usize>) -> Range<usize> {
+    match (a.is_empty(), b.is_empty()) {
+        (true, _) => b,
+        (_, true) => a,
+        _ => a.start.min(b.start)..a.end.max(b.end),
+    }
+}
+
 /// The first i in `lo..hi` with `!pred(i)` (`pred` true then false), or `hi`.
 fn partition(mut lo: usize, mut hi: usize, pred: impl Fn(usize) -> bool) -> usize {
     while lo < hi {
@@ -127,6 +148,19 @@ mod tests {
                 assert!(r.len() <= parts.min(MAX_PARTS));
             }
         }
+    }
+
+    #[test]
+    fn widen_and_hull_cover_their_inputs() {
+        let mut r = 0..0;
+        widen(&mut r, 7);
+        assert_eq!(r, 7..8);
+        widen(&mut r, 3);
+        widen(&mut r, 5);
+        assert_eq!(r, 3..8);
+        assert_eq!(hull(0..0, 4..6), 4..6);
+        assert_eq!(hull(4..6, 9..9), 4..6);
+        assert_eq!(hull(4..6, 1..5), 1..6);
     }
 
     #[test]

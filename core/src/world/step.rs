@@ -1,14 +1,14 @@
-//! The step: the stages of [`crate::step`] in order, with the contact and integration stages
+//! The step: the stages of [`crate::step`] in order, with the contact, bond and integration stages
 //! split into parts that a [`Parallel`] runner may run on several threads.
 
 use super::World;
 use crate::body::BodyForce;
 use crate::error::StepError;
 use crate::num::{Scalar, Vec3};
-use crate::step::bonds::{bond_forces, Clock};
+use crate::step::bonds::{prepare, remove_broken, BondPart, BondShared, Clock, MIN_BONDS_PER_PART};
 use crate::step::integration::IntegratePart;
 use crate::step::narrow_phase::{ContactPart, Shared};
-use crate::step::parts::{split_ranges, Parallel, Serial, MAX_PARTS};
+use crate::step::parts::{hull, split_ranges, Parallel, Serial, MAX_PARTS};
 use crate::step::wall_motion::move_walls;
 use crate::wall::MAX_WALLS;
 use core::ops::Range;
@@ -94,20 +94,8 @@ impl<S: Scalar> World<'_, S> {
             1
         }
         .max(1);
-        let touched = self.contact_stage(par, parts, scratch)?;
-        let clock = Clock {
-            step: self.steps,
-            time: self.time,
-            dt: self.dt,
-            dt_s: self.dt_s,
-        };
-        bond_forces(
-            &mut self.bond_table,
-            &self.spheres[..ns],
-            &self.bodies[..nb],
-            &mut self.forces[..nb],
-            &clock,
-        )?;
+        let mut touched = self.contact_stage(par, parts, scratch)?;
+        self.bond_stage(par, parts, scratch, &mut touched)?;
         let max_disp = self.integration_stage(par, parts, scratch, &touched)?;
         self.list.note_drift(max_disp);
         let wall_disp = move_walls(&mut self.walls, self.dt)?;
@@ -225,6 +213,87 @@ impl<S: Scalar> World<'_, S> {
             );
         }
         Ok(touched)
+    }
+
+    /// The bond stage in at most `parts` parts over runs of about equal bond counts (one part
+    /// below [`MIN_BONDS_PER_PART`] bonds a part). Part 0 adds into the world's accumulators,
+    /// part k > 0 into the k-th scratch arena, and `touched[k]` grows to cover what it wrote.
+    fn bond_stage<P: Parallel>(
+        &mut self,
+        par: &P,
+        parts: usize,
+        scratch: &mut [ThreadScratch<'_, S>],
+        touched: &mut Ranges,
+    ) -> Result<(), StepError> {
+        let nb = self.n_bodies as usize;
+        let ns = self.n_spheres as usize;
+        let clock = Clock {
+            step: self.steps,
+            time: self.time,
+            dt_s: self.dt_s,
+        };
+        let table = &mut self.bond_table;
+        if !prepare(table, &self.spheres[..ns], &self.bodies[..nb], &clock)? {
+            return Ok(());
+        }
+        let n = table.n as usize;
+        // Where each part adds its loads: the world's accumulators, then usable scratch
+        // arenas 1, 2, … (arena k is the one contact part k wrote, see `touched`).
+        let mut sinks: heapless::Vec<&mut [BodyForce<S>], MAX_PARTS> = heapless::Vec::new();
+        let _ = sinks.push(&mut self.forces[..nb]);
+        if parts > 1 {
+            for arena in scratch.iter_mut().filter(|a| a.len() >= nb).skip(1) {
+                let _ = sinks.push(&mut arena[..nb]);
+            }
+        }
+        let mut ranges = Ranges::new();
+        split_ranges(
+            n,
+            parts.min(sinks.len()).min(n / MIN_BONDS_PER_PART).max(1),
+            |i| i as u64,
+            |_| true,
+            &mut ranges,
+        );
+        let shared = BondShared {
+            sets: &table.sets,
+            spheres: &self.spheres[..ns],
+            bodies: &self.bodies[..nb],
+            dt: self.dt,
+        };
+        let mut jobs: heapless::Vec<BondPart<'_, S>, MAX_PARTS> = heapless::Vec::new();
+        let mut bonds = &mut table.bonds[..n];
+        for (r, forces) in ranges.iter().zip(sinks) {
+            let (mine, rest) = core::mem::take(&mut bonds).split_at_mut(r.len());
+            bonds = rest;
+            let _ = jobs.push(BondPart {
+                bonds: mine,
+                forces,
+                touched: 0..0,
+                breaks: 0,
+                result: Ok(()),
+            });
+        }
+        if jobs.len() > 1 {
+            par.for_each(&mut jobs, &|part: &mut BondPart<'_, S>| part.run(&shared));
+        } else {
+            jobs.iter_mut().for_each(|part| part.run(&shared));
+        }
+        let mut breaks = 0u64;
+        for (k, part) in jobs.iter().enumerate() {
+            part.result?;
+            breaks += part.breaks as u64;
+            if k > 0 {
+                while touched.len() <= k {
+                    let _ = touched.push(0..0);
+                }
+                touched[k] = hull(touched[k].clone(), part.touched.clone());
+            }
+        }
+        drop(jobs);
+        if breaks > 0 {
+            remove_broken(&mut self.bond_table, &clock);
+        }
+        Ok(())
     }
 
     /// The integration stage in `parts` parts over body ranges of about equal sphere counts;
