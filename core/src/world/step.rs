@@ -1,5 +1,5 @@
-//! The step: the stages of [`crate::step`] in order, with the contact, bond and integration stages
-//! split into parts that a [`Parallel`] runner may run on several threads.
+//! The step: the stages of [`crate::step`] in order, with the contact, bond and integration
+//! stages split into parts that a [`Parallel`] runner may run on several threads.
 
 use super::World;
 use crate::body::BodyForce;
