@@ -11,6 +11,14 @@
 //! needs to pass the collector); the line then also holds the pods' ends so far
 //! (`harvest`: collected, unpicked, lost and where) and the loss rate, and `--section`
 //! draws a slice through the first row from the side.
+//!
+//! `--replicates N` (with a harvester) runs the seed's field trial
+//! ([`crate::harvester::trial`]): N fields laid out from seeds `seed`, `seed + 1`, …, each
+//! harvested the same way, then one JSON object: each replicate's line, the loss rate per
+//! replicate (`loss_rate_pct`), the relative errors and the pooled t-test against the field's
+//! losses (`--field-loss`, default seed 001 Table 12; `p_value`) and `pods_per_plant`.
+//! Files named by `--vtk`, `--picture` and `--section` get `_rep<R>` before their extension.
+//! `--output FILE` also writes the printed JSON to FILE, whole or not at all.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -21,14 +29,18 @@ use arachis_core::units::LENGTH_M_TO_MM;
 use serde::Serialize;
 
 use crate::arena::{OwnedBonds, OwnedStorage};
+use crate::count_limits::{count, MAX_REPLICATES};
 use crate::field::layout::holes;
 use crate::field::picture::write_field_picture;
 use crate::field::soil::fill_fraction;
 use crate::field::FieldSpec;
+use crate::harvest::SEED001_FIELD_LOSS_PERCENT;
 use crate::harvester::loss::LossTally;
 use crate::harvester::picture::write_section_picture;
 use crate::harvester::rig::Rig;
+use crate::harvester::trial::{summarise, TrialSummary};
 use crate::harvester::HarvesterSpec;
+use crate::io::write_string_atomic;
 use crate::vtk::{write_frame, ParticleFrame};
 
 /// Arguments of `arachis field`.
@@ -58,6 +70,23 @@ pub struct Args {
     /// With `--harvester`: run the whole pass instead of `--steps`.
     #[arg(long, requires = "harvester", conflicts_with = "steps")]
     pub pass: bool,
+    /// With `--harvester`: replicate fields (layout seeds seed, seed + 1, …; seed 001 uses
+    /// four), compared with `--field-loss` by a pooled t-test.
+    #[arg(long, default_value_t = 1, requires = "harvester",
+        value_parser = count::<u32>(1, MAX_REPLICATES))]
+    pub replicates: u32,
+    /// Field loss rates to compare the replicates with, % (comma-separated; default seed 001
+    /// Table 12: 4.01, 3.83, 4.04, 3.42).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        requires = "harvester"
+    )]
+    pub field_loss: Option<Vec<f64>>,
+    /// Also write the printed JSON to FILE (whole or not at all).
+    #[arg(long, value_name = "FILE.json")]
+    pub output: Option<PathBuf>,
 }
 
 /// Most steps one call runs.
@@ -94,6 +123,20 @@ struct FieldLine {
     harvest: Option<HarvestLine>,
 }
 
+/// The printed object of a trial (`--replicates`).
+#[derive(Debug, Serialize)]
+struct TrialReport {
+    name: String,
+    machine: String,
+    /// The comparison with the field: `loss_rate_pct`, `p_value`, `pods_per_plant`, ….
+    #[serde(flatten)]
+    summary: TrialSummary,
+    replicates: Vec<FieldLine>,
+    /// Wall time of all replicates, s.
+    wall_seconds: f64,
+    threads: usize,
+}
+
 /// The harvest part of the printed line.
 #[derive(Debug, Serialize)]
 struct HarvestLine {
@@ -118,24 +161,143 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .as_deref()
         .map(HarvesterSpec::read)
         .transpose()?;
+    let field_loss = args
+        .field_loss
+        .clone()
+        .unwrap_or_else(|| SEED001_FIELD_LOSS_PERCENT.to_vec());
+    if let Some(bad) = field_loss.iter().find(|v| !(0.0..=100.0).contains(*v)) {
+        anyhow::bail!("--field-loss: {bad} is not a loss rate in % (0 to 100)");
+    }
+    let json = match (&machine, args.replicates) {
+        (Some(m), n) if n > 1 => {
+            let started = Instant::now();
+            let mut lines = Vec::new();
+            for r in 0..n {
+                let outputs = Outputs::of(&args, Some(r + 1));
+                let label = format!("field, replicate {}/{n}", r + 1);
+                lines.push(run_one(
+                    &args,
+                    &spec,
+                    Some(m),
+                    args.seed + r as u64,
+                    &outputs,
+                    &label,
+                )?);
+            }
+            let losses = lines
+                .iter()
+                .map(|l| {
+                    l.harvest
+                        .as_ref()
+                        .and_then(|h| h.loss_rate_pct)
+                        .ok_or_else(|| {
+                            anyhow::anyhow!(
+                                "{}: seed {} has no pods, so no loss rate",
+                                args.file.display(),
+                                l.seed
+                            )
+                        })
+                })
+                .collect::<anyhow::Result<Vec<f64>>>()?;
+            let pods_per_plant = lines
+                .iter()
+                .map(|l| l.pods as f64 / l.plants.max(1) as f64)
+                .sum::<f64>()
+                / lines.len() as f64;
+            let summary = summarise(&losses, &field_loss, pods_per_plant);
+            if summary.significant_difference == Some(true) {
+                eprintln!(
+                    "field: the simulated mean loss {:.2} % differs from the field's {:.2} % (p = {:.3e} < {})",
+                    summary.mean_simulated_pct,
+                    summary.mean_field_pct,
+                    summary.p_value.unwrap_or(f64::NAN),
+                    summary.alpha
+                );
+            }
+            serde_json::to_string(&TrialReport {
+                name: spec.field.name.clone(),
+                machine: m.harvester.name.clone(),
+                summary,
+                replicates: lines,
+                wall_seconds: started.elapsed().as_secs_f64(),
+                threads: crate::stepping::run_threads(),
+            })?
+        }
+        _ => {
+            let outputs = Outputs::of(&args, None);
+            let line = run_one(&args, &spec, machine.as_ref(), args.seed, &outputs, "field")?;
+            serde_json::to_string(&line)?
+        }
+    };
+    if let Some(path) = &args.output {
+        write_string_atomic(path, &format!("{json}\n"))?;
+    }
+    println!("{json}");
+    Ok(())
+}
+
+/// Where one run writes its pictures and VTK file.
+struct Outputs {
+    vtk: Option<PathBuf>,
+    picture: Option<PathBuf>,
+    section: Option<PathBuf>,
+}
+
+impl Outputs {
+    /// The files of `args`, with `_rep<R>` before the extension for replicate R.
+    fn of(args: &Args, replicate: Option<u32>) -> Self {
+        let name = |p: &Option<PathBuf>| {
+            p.as_ref().map(|p| match replicate {
+                None => p.clone(),
+                Some(r) => {
+                    let stem = p
+                        .file_stem()
+                        .map(|s| s.to_string_lossy().into_owned())
+                        .unwrap_or_default();
+                    let ext = p
+                        .extension()
+                        .map(|e| format!(".{}", e.to_string_lossy()))
+                        .unwrap_or_default();
+                    p.with_file_name(format!("{stem}_rep{r}{ext}"))
+                }
+            })
+        };
+        Outputs {
+            vtk: name(&args.vtk),
+            picture: name(&args.picture),
+            section: name(&args.section),
+        }
+    }
+}
+
+/// Lay out the field of `spec` from `seed`, mount `machine`, step, write `outputs` and return
+/// the line.
+fn run_one(
+    args: &Args,
+    spec: &FieldSpec,
+    machine: Option<&HarvesterSpec>,
+    seed: u64,
+    outputs: &Outputs,
+    label: &str,
+) -> anyhow::Result<FieldLine> {
     let field = spec
-        .plant(args.seed)
+        .plant(seed)
         .with_context(|| format!("{}: cannot lay out the field", args.file.display()))?;
-    let (extra_bodies, extra_spheres) = machine.as_ref().map_or((0, 0), Rig::extra_storage);
+    let (extra_bodies, extra_spheres) = machine.map_or((0, 0), Rig::extra_storage);
     let mut arena =
-        OwnedStorage::<Fx>::new(field.storage_lengths_with(&spec, extra_bodies, extra_spheres));
+        OwnedStorage::<Fx>::new(field.storage_lengths_with(spec, extra_bodies, extra_spheres));
     let mut bonds = OwnedBonds::<Fx>::new(field.bond_count());
     let mut world = World::new(arena.storage()).map_err(|e| anyhow::anyhow!("{e}"))?;
     world
         .attach_bond_storage(bonds.storage())
         .map_err(|e| anyhow::anyhow!("{e}"))?;
-    let loaded = field.load_into(&spec, &mut world).map_err(|e| {
+    let loaded = field.load_into(spec, &mut world).map_err(|e| {
         anyhow::anyhow!(
             "{}: cannot build the field's world: {e}",
             args.file.display()
         )
     })?;
-    let mut rig = match (&machine, &args.harvester) {
+    let mut rig = match (machine, &args.harvester) {
         (Some(m), Some(path)) => {
             Some(Rig::mount(m, &field, &loaded, &mut world).map_err(|e| {
                 anyhow::anyhow!("{}: cannot mount the harvester: {e}", path.display())
@@ -148,7 +310,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         _ => args.steps,
     };
     let started = Instant::now();
-    let bar = super::steps_bar("field", steps);
+    let bar = super::steps_bar(label, steps);
     let mut done = 0;
     while done < steps {
         let n = PROGRESS_STEPS.min(steps - done);
@@ -168,7 +330,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     bar.finish_and_clear();
     let wall_seconds = started.elapsed().as_secs_f64();
-    let harvest = match (&rig, &machine) {
+    let harvest = match (&rig, machine) {
         (Some(r), Some(m)) => {
             let pods = r.tally(&world);
             Some(HarvestLine {
@@ -198,7 +360,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .count();
     let line = FieldLine {
         name: spec.field.name.clone(),
-        seed: args.seed,
+        seed,
         plants: field.plants.len(),
         pods: field.pods(),
         grains: field.grains.len(),
@@ -220,18 +382,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         digest: format!("{:016x}", world.digest()),
         harvest,
     };
-    if let Some(path) = &args.vtk {
+    if let Some(path) = &outputs.vtk {
         write_frame(path, &ParticleFrame::from_world(&world))?;
     }
-    if let (Some(path), Some(r)) = (&args.section, &rig) {
-        let row_y = holes(&spec).first().map_or(0.0, |h| h[1]);
-        let title = format!("{}, seed {}", spec.field.name, args.seed);
+    if let (Some(path), Some(r)) = (&outputs.section, &rig) {
+        let row_y = holes(spec).first().map_or(0.0, |h| h[1]);
+        let title = format!("{}, seed {seed}", spec.field.name);
         write_section_picture(path, &world, &loaded.materials, r.steel, row_y, &title)?;
     }
-    if let Some(path) = &args.picture {
-        let title = format!("{}, seed {}", spec.field.name, args.seed);
+    if let Some(path) = &outputs.picture {
+        let title = format!("{}, seed {seed}", spec.field.name);
         write_field_picture(path, &field, &title)?;
     }
-    println!("{}", serde_json::to_string(&line)?);
-    Ok(())
+    Ok(line)
 }

@@ -28,6 +28,7 @@ pub mod motion;
 pub mod parts;
 pub mod picture;
 pub mod rig;
+pub mod trial;
 
 use std::path::Path;
 
