@@ -60,6 +60,7 @@ fn three_replicates_report_their_losses_and_the_t_test_against_table_12() {
     let (field, machine) = small_trial_files(dir.path());
     let output = dir.path().join("trial.json");
     let section = dir.path().join("section.svg");
+    let pod_map = dir.path().join("pods.svg");
     let out = arachis(&[
         "--threads",
         "2",
@@ -73,6 +74,8 @@ fn three_replicates_report_their_losses_and_the_t_test_against_table_12() {
         "300",
         "--section",
         section.to_str().unwrap(),
+        "--pod-map",
+        pod_map.to_str().unwrap(),
         "--output",
         output.to_str().unwrap(),
     ]);

@@ -17,7 +17,8 @@
 //! harvested the same way, then one JSON object: each replicate's line, the loss rate per
 //! replicate (`loss_rate_pct`), the relative errors and the pooled t-test against the field's
 //! losses (`--field-loss`, default seed 001 Table 12; `p_value`) and `pods_per_plant`.
-//! Files named by `--vtk`, `--picture` and `--section` get `_rep<R>` before their extension.
+//! Files named by `--vtk`, `--picture`, `--section` and `--pod-map` get `_rep<R>` before
+//! their extension. `--pod-map` draws where every pod ended, from above.
 //! `--output FILE` also writes the printed JSON to FILE, whole or not at all.
 
 use std::path::PathBuf;
@@ -36,7 +37,7 @@ use crate::field::soil::fill_fraction;
 use crate::field::FieldSpec;
 use crate::harvest::SEED001_FIELD_LOSS_PERCENT;
 use crate::harvester::loss::LossTally;
-use crate::harvester::picture::write_section_picture;
+use crate::harvester::picture::{write_pod_map, write_section_picture};
 use crate::harvester::rig::Rig;
 use crate::harvester::trial::{summarise, TrialSummary};
 use crate::harvester::HarvesterSpec;
@@ -67,6 +68,10 @@ pub struct Args {
     /// steps (soil, plants, pods and the machine), SVG.
     #[arg(long, value_name = "FILE.svg", requires = "harvester")]
     pub section: Option<PathBuf>,
+    /// With `--harvester`: write the plan view of where every pod ended (collected, unpicked,
+    /// lost and where), SVG.
+    #[arg(long, value_name = "FILE.svg", requires = "harvester")]
+    pub pod_map: Option<PathBuf>,
     /// With `--harvester`: run the whole pass instead of `--steps`.
     #[arg(long, requires = "harvester", conflicts_with = "steps")]
     pub pass: bool,
@@ -241,6 +246,7 @@ struct Outputs {
     vtk: Option<PathBuf>,
     picture: Option<PathBuf>,
     section: Option<PathBuf>,
+    pod_map: Option<PathBuf>,
 }
 
 impl Outputs {
@@ -266,6 +272,7 @@ impl Outputs {
             vtk: name(&args.vtk),
             picture: name(&args.picture),
             section: name(&args.section),
+            pod_map: name(&args.pod_map),
         }
     }
 }
@@ -389,6 +396,18 @@ fn run_one(
         let row_y = holes(spec).first().map_or(0.0, |h| h[1]);
         let title = format!("{}, seed {seed}", spec.field.name);
         write_section_picture(path, &world, &loaded.materials, r.steel, row_y, &title)?;
+    }
+    if let (Some(path), Some(r)) = (&outputs.pod_map, &rig) {
+        let title = format!("{}, seed {seed}", spec.field.name);
+        let ends = r.ends(&world);
+        write_pod_map(
+            path,
+            &world,
+            &ends,
+            field.bed_min_m,
+            field.bed_max_m,
+            &title,
+        )?;
     }
     if let Some(path) = &outputs.picture {
         let title = format!("{}, seed {seed}", spec.field.name);

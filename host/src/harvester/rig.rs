@@ -274,19 +274,19 @@ impl Rig {
 
     /// Every pod's end as things stand: those not yet collected or down are placed by
     /// [`at_end`].
-    pub fn ends<S: Scalar>(&self, world: &World<'_, S>) -> Vec<PodEnd> {
+    pub fn ends<S: Scalar>(&self, world: &World<'_, S>) -> Vec<(BodyId, PodEnd)> {
         let attached = self.attached(world);
         self.pods
             .iter()
             .zip(attached)
-            .map(|(w, on)| w.end.unwrap_or_else(|| at_end(on, w.lifted)))
+            .map(|(w, on)| (w.body, w.end.unwrap_or_else(|| at_end(on, w.lifted))))
             .collect()
     }
 
     /// The tally of [`Rig::ends`].
     pub fn tally<S: Scalar>(&self, world: &World<'_, S>) -> LossTally {
         let mut t = LossTally::default();
-        for e in self.ends(world) {
+        for (_, e) in self.ends(world) {
             t.add(e);
         }
         t
