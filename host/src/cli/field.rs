@@ -180,14 +180,23 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             for r in 0..n {
                 let outputs = Outputs::of(&args, Some(r + 1));
                 let label = format!("field, replicate {}/{n}", r + 1);
-                lines.push(run_one(
+                let line = run_one(
                     &args,
                     &spec,
                     Some(m),
                     args.seed + r as u64,
                     &outputs,
                     &label,
-                )?);
+                )?;
+                // A pass takes hours: say each replicate's result as soon as it is known.
+                eprintln!(
+                    "field: replicate {}/{n} (seed {}) done in {:.0} s: {}",
+                    r + 1,
+                    line.seed,
+                    line.wall_seconds,
+                    serde_json::to_string(&line.harvest)?
+                );
+                lines.push(line);
             }
             let losses = lines
                 .iter()
