@@ -49,6 +49,26 @@ pub struct Bond<S> {
 }
 
 impl<S: Scalar> Bond<S> {
+    /// The same bond with every quantity through `f` (e.g. to [`Scalar::Fast`], same bits).
+    #[inline(always)]
+    pub(crate) fn map<T: Scalar>(&self, f: impl Fn(S) -> T + Copy) -> Bond<T> {
+        Bond {
+            id: self.id,
+            sphere_a: self.sphere_a,
+            sphere_b: self.sphere_b,
+            set: self.set,
+            normal_disp: f(self.normal_disp),
+            tangential_disp: self.tangential_disp.map(f),
+            twist: f(self.twist),
+            bend: self.bend.map(f),
+            normal_force: f(self.normal_force),
+            tangential_force: self.tangential_force.map(f),
+            twisting_moment: f(self.twisting_moment),
+            bending_moment: self.bending_moment.map(f),
+            normal: self.normal.map(f),
+        }
+    }
+
     /// Sort key: (lower sphere, higher sphere).
     #[inline(always)]
     pub fn key(&self) -> u64 {
