@@ -137,8 +137,12 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
                         }
                         self.by_terms(sh, e, key, touch)?;
                     }
-                    // Only entries that held something need writing.
-                    None if entry.partner != key || entry.delta != Vec3::ZERO || with_effects => {
+                    // Only entries that held something need writing (a field's soil keeps
+                    // effect history, and most of its entries stay apart step after step).
+                    None if entry.partner != key
+                        || entry.delta != Vec3::ZERO
+                        || state.effects() != EffectHistory::default() =>
+                    {
                         self.write(e, key, &ContactState::default(), false)
                     }
                     None => {}
