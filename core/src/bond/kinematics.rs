@@ -116,14 +116,19 @@ pub fn update<S: Scalar>(
         return Some(load);
     }
     let load = advance(bond, &k, &ends, n, dist, dt, |_| true)?;
-    let ok = load.force.is_valid()
+    valid(bond, &load).then_some(load)
+}
+
+/// Whether the checked arithmetic left no overflow poison in the loads or the state.
+#[inline(always)]
+fn valid<S: Scalar>(bond: &Bond<S>, load: &BondLoad<S>) -> bool {
+    load.force.is_valid()
         & load.torque_a.is_valid()
         & load.torque_b.is_valid()
         & bond.tangential_disp.is_valid()
         & bond.bend.is_valid()
         & bond.normal_disp.is_valid()
-        & bond.twist.is_valid();
-    ok.then_some(load)
+        & bond.twist.is_valid()
 }
 
 /// The motion of a bond's two ends that one update reads (mm, mm/ms, rad/ms).
@@ -138,6 +143,24 @@ struct Ends<S> {
     velocity_b: Vec3<S>,
     spin_a: Vec3<S>,
     spin_b: Vec3<S>,
+}
+
+impl<S: Scalar> Ends<S> {
+    /// The same motion through `f` (to [`Scalar::Fast`], same bits).
+    #[inline(always)]
+    fn map<T: Scalar>(&self, f: impl Fn(S) -> T + Copy) -> Ends<T> {
+        Ends {
+            centre_a: self.centre_a.map(f),
+            radius_a: f(self.radius_a),
+            radius_b: f(self.radius_b),
+            body_a: self.body_a.map(f),
+            body_b: self.body_b.map(f),
+            velocity_a: self.velocity_a.map(f),
+            velocity_b: self.velocity_b.map(f),
+            spin_a: self.spin_a.map(f),
+            spin_b: self.spin_b.map(f),
+        }
+    }
 }
 
 /// The four stiffnesses of a bond set: Kn·A, Kt·A (N/mm), Kt·J, Kn·J/2 (N·mm per rad).
@@ -157,6 +180,17 @@ impl<S: Scalar> Stiffness<S> {
             kt_area: p.kt_area,
             kt_polar: p.kt_polar,
             kn_inertia: p.kn_inertia,
+        }
+    }
+
+    /// The same stiffnesses through `f` (to [`Scalar::Fast`], same bits).
+    #[inline(always)]
+    fn map<T: Scalar>(&self, f: impl Fn(S) -> T) -> Stiffness<T> {
+        Stiffness {
+            kn_area: f(self.kn_area),
+            kt_area: f(self.kt_area),
+            kt_polar: f(self.kt_polar),
+            kn_inertia: f(self.kn_inertia),
         }
     }
 }
@@ -194,50 +228,33 @@ fn unchecked<S: Scalar>(
 ) -> Option<BondLoad<S>> {
     type F<S> = <S as Scalar>::Fast;
     let f = S::to_fast;
-    let f3 = |v: Vec3<S>| v.map(f);
     let within3 = |v: Vec3<F<S>>, bits| F::<S>::magnitude3(v).within(bits);
-    let (centre_a, body_a, body_b) = (f3(e.centre_a), f3(e.body_a), f3(e.body_b));
-    let positions_in = within3(centre_a, POSITION_BITS)
-        & within3(body_a, POSITION_BITS)
-        & within3(body_b, POSITION_BITS);
+    let e = e.map(f);
+    let mut fast = bond.map(f);
+    let positions_in = within3(e.centre_a, POSITION_BITS)
+        & within3(e.body_a, POSITION_BITS)
+        & within3(e.body_b, POSITION_BITS);
     if !positions_in {
         return None;
     }
-    let inputs_in = within3(centre_a - body_a, SIZE_BITS)
-        & within3(centre_a - body_b, SIZE_BITS)
+    let inputs_in = within3(e.centre_a - e.body_a, SIZE_BITS)
+        & within3(e.centre_a - e.body_b, SIZE_BITS)
         & f(dist).within(SIZE_BITS)
-        & f(e.radius_a).within(SIZE_BITS)
-        & f(e.radius_b).within(SIZE_BITS)
-        & within3(f3(e.velocity_a), VELOCITY_BITS)
-        & within3(f3(e.velocity_b), VELOCITY_BITS)
-        & within3(f3(e.spin_a), SPIN_BITS)
-        & within3(f3(e.spin_b), SPIN_BITS)
+        & e.radius_a.within(SIZE_BITS)
+        & e.radius_b.within(SIZE_BITS)
+        & within3(e.velocity_a, VELOCITY_BITS)
+        & within3(e.velocity_b, VELOCITY_BITS)
+        & within3(e.spin_a, SPIN_BITS)
+        & within3(e.spin_b, SPIN_BITS)
         & f(dt).within(TIMESTEP_BITS)
-        & f(bond.normal_disp).within(DISPLACEMENT_BITS)
-        & within3(f3(bond.tangential_disp), DISPLACEMENT_BITS)
-        & f(bond.twist).within(DISPLACEMENT_BITS)
-        & within3(f3(bond.bend), DISPLACEMENT_BITS);
+        & fast.normal_disp.within(DISPLACEMENT_BITS)
+        & within3(fast.tangential_disp, DISPLACEMENT_BITS)
+        & fast.twist.within(DISPLACEMENT_BITS)
+        & within3(fast.bend, DISPLACEMENT_BITS);
     if !inputs_in {
         return None;
     }
-    let ends = Ends {
-        centre_a,
-        radius_a: f(e.radius_a),
-        radius_b: f(e.radius_b),
-        body_a,
-        body_b,
-        velocity_a: f3(e.velocity_a),
-        velocity_b: f3(e.velocity_b),
-        spin_a: f3(e.spin_a),
-        spin_b: f3(e.spin_b),
-    };
-    let k = Stiffness {
-        kn_area: f(k.kn_area),
-        kt_area: f(k.kt_area),
-        kt_polar: f(k.kt_polar),
-        kn_inertia: f(k.kn_inertia),
-    };
-    let mut fast = bond.map(f);
+    let k = k.map(f);
     let loads_in = |b: &Bond<F<S>>| {
         let m3 = F::<S>::magnitude3;
         let (_, a) = k.kn_area.mul_within(b.normal_disp.abs(), LOAD_BITS);
@@ -246,7 +263,7 @@ fn unchecked<S: Scalar>(
         let (_, r) = k.kn_inertia.mul_within(m3(b.bend), LOAD_BITS);
         a & t & w & r
     };
-    let load = advance(&mut fast, &k, &ends, f3(n), f(dist), f(dt), loads_in)?;
+    let load = advance(&mut fast, &k, &e, n.map(f), f(dist), f(dt), loads_in)?;
     *bond = fast.map(S::from_fast);
     Some(load.map(S::from_fast))
 }
@@ -353,13 +370,7 @@ mod tests {
             let (bond, k, ends, n, dist, dt) = random_bond(&mut s);
             let mut checked = bond;
             let want = advance(&mut checked, &k, &ends, n, dist, dt, |_| true).expect("no gate");
-            let valid = want.force.is_valid()
-                & want.torque_a.is_valid()
-                & want.torque_b.is_valid()
-                & checked.tangential_disp.is_valid()
-                & checked.bend.is_valid()
-                & checked.normal_disp.is_valid()
-                & checked.twist.is_valid();
+            let valid = valid(&checked, &want);
             both_valid += valid as u32;
             let mut fast = bond;
             match unchecked(&mut fast, &k, &ends, n, dist, dt) {
