@@ -203,6 +203,8 @@ const ROW_SPHERES: usize = MAX_CLUMP_SPHERES;
 struct RowSpheres {
     /// Index of the sphere, and the interval (m) of x it may contain.
     spheres: heapless::Vec<(usize, f64, f64), ROW_SPHERES>,
+    /// The hull of those intervals, m (empty when no sphere meets the row).
+    span: (f64, f64),
     /// Too many spheres to track: test them all.
     all: bool,
 }
@@ -211,6 +213,7 @@ impl RowSpheres {
     fn new(spheres: &[MassSphere], y: f64, z: f64, h: f64) -> Self {
         let mut row = RowSpheres {
             spheres: heapless::Vec::new(),
+            span: (f64::INFINITY, f64::NEG_INFINITY),
             all: spheres.len() > ROW_SPHERES,
         };
         if row.all {
@@ -223,8 +226,10 @@ impl RowSpheres {
                 continue;
             }
             let w = libm::sqrt(r2 - across) + h;
+            let (lo, hi) = (s.center_m[0] - w, s.center_m[0] + w);
+            row.span = (row.span.0.min(lo), row.span.1.max(hi));
             // Cannot fail: at most ROW_SPHERES spheres.
-            let _ = row.spheres.push((k, s.center_m[0] - w, s.center_m[0] + w));
+            let _ = row.spheres.push((k, lo, hi));
         }
         row
     }
@@ -234,11 +239,7 @@ impl RowSpheres {
         if self.all {
             return 0..n;
         }
-        let (mut a, mut b) = (f64::INFINITY, f64::NEG_INFINITY);
-        for &(_, lo, hi) in &self.spheres {
-            a = a.min(lo);
-            b = b.max(hi);
-        }
+        let (a, b) = self.span;
         if a > b {
             return 0..0;
         }
