@@ -176,10 +176,40 @@ impl Div for Fx {
 /// Exact truncated quotient and remainder of `un / ud` (requires `un < ud · 2^63`), by
 /// integer division. (An `f64`-estimate variant was measured slower: 42 ns against 18–20 ns
 /// for the 128-bit integer division on this machine, so division is integer-only.)
+///
+/// On x86-64, a divisor below 2^64 with a quotient below 2^64 (every `Fx` division) takes
+/// the processor's 128-by-64-bit `div` ([`div_wide`]) instead of the library's general
+/// 128-bit division, a call that was 5 % of the host's scenario tests (the checked contact
+/// terms divide for R*, m* and the Coulomb limit). Both are exact, so the bits are the same.
 #[inline(always)]
 pub fn udivrem(un: u128, ud: u128) -> (u128, u128) {
+    #[cfg(target_arch = "x86_64")]
+    if ud >> 64 == 0 && (un >> 64) < ud {
+        let (q, r) = div_wide(un, ud as u64);
+        return (q as u128, r as u128);
+    }
     let t = un / ud;
     (t, un - t * ud)
+}
+
+/// Quotient and remainder of `un / d` by one `div` instruction; requires `un >> 64 < d`
+/// (so that d ≠ 0 and the quotient fits 64 bits, the two cases in which `div` faults).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn div_wide(un: u128, d: u64) -> (u64, u64) {
+    let (q, r): (u64, u64);
+    // SAFETY: `div` divides rdx:rax by `d`, leaving the quotient in rax and the remainder in
+    // rdx; it touches no memory, and the caller's bound rules out both faults.
+    unsafe {
+        core::arch::asm!(
+            "div {d}",
+            d = in(reg) d,
+            inout("rax") un as u64 => q,
+            inout("rdx") (un >> 64) as u64 => r,
+            options(pure, nomem, nostack),
+        );
+    }
+    (q, r)
 }
 
 impl AddAssign for Fx {
@@ -199,17 +229,51 @@ impl SubAssign for Fx {
 /// (r − ½)² ≤ v < (r + ½)².
 ///
 /// By default the root is integer-only (stepping is integer-only, DESIGN §5): the
-/// multiplication-only [`isqrt_round_u64`] below 2^64, `core`'s `isqrt` above.
+/// multiplication-only [`isqrt_round_u64`] below 2^64, [`isqrt_round_wide`] from 2^64 to
+/// 2^[`WIDE_ROOT_BITS`], and `core`'s `isqrt` above.
 /// With the `float-estimate` feature an `f64` estimate is corrected to the exact integer root
 /// with integer multiply-and-compare, so the result does not depend on the estimate. Tests
 /// check both agree.
 #[inline]
 pub fn isqrt_round_u128(v: u128) -> u128 {
     #[cfg(not(feature = "float-estimate"))]
-    if v <= u64::MAX as u128 {
-        return isqrt_round_u64(v as u64) as u128;
+    {
+        if v <= u64::MAX as u128 {
+            return isqrt_round_u64(v as u64) as u128;
+        }
+        if v >> WIDE_ROOT_BITS == 0 {
+            return isqrt_round_wide(v);
+        }
     }
     round_floor_root(v, isqrt_floor_u128(v))
+}
+
+/// [`isqrt_round_wide`] takes v below 2^WIDE_ROOT_BITS, so that its guess stays below 2^60,
+/// inside the branch-free finish of [`round_root_from_guess`].
+const WIDE_ROOT_BITS: u32 = 2 * NEAREST_ROOT_GUESS_BITS;
+
+/// [`isqrt_round_u128`] for 2^64 ≤ v < 2^[`WIDE_ROOT_BITS`] with multiplications only. Every
+/// `Fx` root of a value of 1 or more lands here (v = raw·2^32), among them each bond's length
+/// and each checked contact's distance; `core`'s `isqrt` took a chain of 128-bit divisions.
+///
+/// With the top 64 bits x ∈ [2^62, 2^64) of v·4^h, X = x/2^64: [`rsqrt_q62`] gives
+/// Y ≈ 2^62/√X to about 2^-60, so √(x·2^64) = x·Y/2^62 and √v ≈ x·Y/2^(62 + h), within a
+/// fraction of a unit for v < 2^120 (the 64 dropped low bits change the root by less than
+/// 2^-32 of it). [`round_root_from_guess`] finishes exactly, so the result never depends on
+/// the estimate.
+#[inline(always)]
+#[cfg_attr(feature = "float-estimate", allow(dead_code))]
+fn isqrt_round_wide(v: u128) -> u128 {
+    round_root_from_guess(v, wide_root_guess(v))
+}
+
+/// The estimate of [`isqrt_round_wide`]: x·Y/2^(62 + h).
+#[inline(always)]
+#[cfg_attr(feature = "float-estimate", allow(dead_code))]
+fn wide_root_guess(v: u128) -> u128 {
+    let h = v.leading_zeros() / 2;
+    let x = ((v << (2 * h)) >> 64) as u64;
+    (x as u128 * rsqrt_q62(x) as u128) >> (62 + h)
 }
 
 /// The rounded root from the floor root r = ⌊√v⌋: (r + ½)² = r² + r + ¼, so round up when
@@ -649,6 +713,43 @@ mod tests {
             let d = ((x >> (k % 61)) | 1) as u128;
             let n = v % (d << 63);
             assert_eq!(udivrem(n, d), (n / d, n % d), "{n} / {d}");
+            // The edge of the hardware division: a high word just below the divisor, and
+            // divisors of 2^64 and more (the general division).
+            let n = (((d - 1) << 64) | x as u128).min(u128::MAX);
+            assert_eq!(udivrem(n, d), (n / d, n % d), "{n} / {d}");
+            let wide = (d << 64) | 1;
+            let n = v | (1 << 127);
+            assert_eq!(udivrem(n, wide), (n / wide, n % wide), "{n} / {wide}");
+        }
+    }
+
+    #[test]
+    fn wide_root_is_exact_at_squares_and_between() {
+        // 2^64 ≤ v < 2^120 (the bond lengths and checked contact distances of `Fx::sqrt`):
+        // k² − k, k², k² + k, k² + k + 1 around each power of two and 10^6 random roots
+        // spread over every magnitude, against the rounded `core` isqrt.
+        let mut cases = [1u128 << 64, (1u128 << WIDE_ROOT_BITS) - 1].to_vec();
+        for b in 32..60u32 {
+            for k in [(1u128 << b) - 1, 1u128 << b, (1u128 << b) + 1] {
+                cases.extend([k * k - k, k * k, k * k + k, k * k + k + 1]);
+            }
+        }
+        let mut x = 0x853c_49e6_748f_ea9bu64;
+        for k in 0..1_000_000u32 {
+            x = xorshift(x);
+            let r = ((x >> (k % 28)) as u128 >> 4) | (1 << 32);
+            x = xorshift(x);
+            cases.push(r * r + (x as u128 % (2 * r + 1)));
+        }
+        for v in cases {
+            if !(v >> 64 != 0 && v >> WIDE_ROOT_BITS == 0) {
+                continue;
+            }
+            let exact = round_floor_root(v, v.isqrt());
+            // The estimate lands on the branch-free finish (two units), not the stepping.
+            assert!(wide_root_guess(v).abs_diff(exact) <= 2, "√{v}");
+            assert_eq!(isqrt_round_wide(v), exact, "√{v}");
+            assert_eq!(isqrt_round_u128(v), exact, "√{v}");
         }
     }
 
