@@ -53,15 +53,15 @@ impl Parallel for Serial {
 /// Split `0..n` items into at most `parts` ranges of about equal `weight`, cutting only
 /// where `cut_ok(i)` allows a range to start at i (0 and n always do). Ranges are in order,
 /// non-empty and cover `0..n`; fewer than `parts` come back when cuts are scarce.
-pub(crate) fn split_ranges(
+pub(crate) fn split_ranges<const N: usize>(
     n: usize,
     parts: usize,
     weight_before: impl Fn(usize) -> u64,
     mut cut_ok: impl FnMut(usize) -> bool,
-    out: &mut heapless::Vec<Range<usize>, MAX_PARTS>,
+    out: &mut heapless::Vec<Range<usize>, N>,
 ) {
     out.clear();
-    let parts = parts.clamp(1, MAX_PARTS);
+    let parts = parts.clamp(1, N.min(MAX_PARTS));
     let total = weight_before(n);
     let mut start = 0;
     for p in 1..parts {

@@ -17,7 +17,8 @@ use core::ops::Range;
 /// range: as long as the body arena, all zero between steps (the step leaves it so).
 pub type ThreadScratch<'s, S> = &'s mut [BodyForce<S>];
 
-type Ranges = heapless::Vec<Range<usize>, MAX_PARTS>;
+/// One range per part, for at most N parts.
+type Ranges<const N: usize> = heapless::Vec<Range<usize>, N>;
 
 impl<S: Scalar> World<'_, S> {
     /// Advance the world by one time step on the calling thread.
@@ -94,9 +95,11 @@ impl<S: Scalar> World<'_, S> {
             1
         }
         .max(1);
-        let mut touched = self.contact_stage(par, parts, scratch)?;
-        self.bond_stage(par, parts, scratch, &mut touched)?;
-        let max_disp = self.integration_stage(par, parts, scratch, &touched)?;
+        let max_disp = if parts == 1 {
+            self.staged::<P, 1, 2>(par, parts, scratch)?
+        } else {
+            self.staged::<P, MAX_PARTS, { MAX_PARTS + 1 }>(par, parts, scratch)?
+        };
         self.list.note_drift(max_disp);
         let wall_disp = move_walls(&mut self.walls, self.dt)?;
         if wall_disp != S::ZERO {
@@ -105,6 +108,27 @@ impl<S: Scalar> World<'_, S> {
         self.time += self.dt;
         self.steps += 1;
         Ok(())
+    }
+
+    /// The contact, bond and integration stages in `parts` ≤ N parts, with room for N parts
+    /// and for SUMS accumulator arenas per integration part (N + 1). Returns the largest
+    /// sphere displacement, mm.
+    ///
+    /// Why sized: the job lists live on the stack, and at [`MAX_PARTS`] they take about
+    /// 200 kB (an integration part alone holds room for 65 arenas). A one-part step of a
+    /// small world (the one-sphere rigs of a diagnosis run millions of them) spent most of
+    /// its time touching that frame, page by page. `#[inline(never)]` keeps each size's
+    /// frame to itself.
+    #[inline(never)]
+    fn staged<P: Parallel, const N: usize, const SUMS: usize>(
+        &mut self,
+        par: &P,
+        parts: usize,
+        scratch: &mut [ThreadScratch<'_, S>],
+    ) -> Result<S, StepError> {
+        let mut touched = self.contact_stage::<P, N>(par, parts, scratch)?;
+        self.bond_stage::<P, N>(par, parts, scratch, &mut touched)?;
+        self.integration_stage::<P, N, SUMS>(par, parts, scratch, &touched)
     }
 
     /// The first sphere of body `b` (the sphere count for `b` = the body count).
@@ -119,15 +143,15 @@ impl<S: Scalar> World<'_, S> {
     /// The contact stage in `parts` parts over body ranges of about equal entry counts.
     /// Returns, per part, the bodies beyond its range whose sums it wrote in its scratch
     /// arena.
-    fn contact_stage<P: Parallel>(
+    fn contact_stage<P: Parallel, const N: usize>(
         &mut self,
         par: &P,
         parts: usize,
         scratch: &mut [ThreadScratch<'_, S>],
-    ) -> Result<Ranges, StepError> {
+    ) -> Result<Ranges<N>, StepError> {
         let nb = self.n_bodies as usize;
         let ns = self.n_spheres as usize;
-        let mut ranges = Ranges::new();
+        let mut ranges = Ranges::<N>::new();
         {
             let offsets = self.list.live().offsets;
             split_ranges(
@@ -138,7 +162,7 @@ impl<S: Scalar> World<'_, S> {
                 &mut ranges,
             );
         }
-        let sphere_ranges: heapless::Vec<Range<usize>, MAX_PARTS> = ranges
+        let sphere_ranges: Ranges<N> = ranges
             .iter()
             .map(|r| self.first_sphere_of(r.start)..self.first_sphere_of(r.end))
             .collect();
@@ -152,7 +176,7 @@ impl<S: Scalar> World<'_, S> {
             offsets: live.offsets,
             dt: self.dt,
         };
-        let mut jobs: heapless::Vec<ContactPart<'_, S>, MAX_PARTS> = heapless::Vec::new();
+        let mut jobs: heapless::Vec<ContactPart<'_, S>, N> = heapless::Vec::new();
         {
             let mut entries = &mut live.entries[..];
             let mut effects = &mut live.effects[..];
@@ -193,7 +217,7 @@ impl<S: Scalar> World<'_, S> {
         par.for_each(&mut jobs, &|part: &mut ContactPart<'_, S>| {
             part.run(&shared)
         });
-        let mut touched = Ranges::new();
+        let mut touched = Ranges::<N>::new();
         let mut wall_sums = [[S::Sum::default(); 3]; MAX_WALLS];
         for part in jobs.iter() {
             part.result?;
@@ -218,12 +242,12 @@ impl<S: Scalar> World<'_, S> {
     /// The bond stage in at most `parts` parts over runs of about equal bond counts (one part
     /// below [`MIN_BONDS_PER_PART`] bonds a part). Part 0 adds into the world's accumulators,
     /// part k > 0 into the k-th scratch arena, and `touched[k]` grows to cover what it wrote.
-    fn bond_stage<P: Parallel>(
+    fn bond_stage<P: Parallel, const N: usize>(
         &mut self,
         par: &P,
         parts: usize,
         scratch: &mut [ThreadScratch<'_, S>],
-        touched: &mut Ranges,
+        touched: &mut Ranges<N>,
     ) -> Result<(), StepError> {
         let nb = self.n_bodies as usize;
         let ns = self.n_spheres as usize;
@@ -239,14 +263,14 @@ impl<S: Scalar> World<'_, S> {
         let n = table.n as usize;
         // Where each part adds its loads: the world's accumulators, then usable scratch
         // arenas 1, 2, … (arena k is the one contact part k wrote, see `touched`).
-        let mut sinks: heapless::Vec<&mut [BodyForce<S>], MAX_PARTS> = heapless::Vec::new();
+        let mut sinks: heapless::Vec<&mut [BodyForce<S>], N> = heapless::Vec::new();
         let _ = sinks.push(&mut self.forces[..nb]);
         if parts > 1 {
             for arena in scratch.iter_mut().filter(|a| a.len() >= nb).skip(1) {
                 let _ = sinks.push(&mut arena[..nb]);
             }
         }
-        let mut ranges = Ranges::new();
+        let mut ranges = Ranges::<N>::new();
         split_ranges(
             n,
             parts.min(sinks.len()).min(n / MIN_BONDS_PER_PART).max(1),
@@ -260,7 +284,7 @@ impl<S: Scalar> World<'_, S> {
             bodies: &self.bodies[..nb],
             dt: self.dt,
         };
-        let mut jobs: heapless::Vec<BondPart<'_, S>, MAX_PARTS> = heapless::Vec::new();
+        let mut jobs: heapless::Vec<BondPart<'_, S>, N> = heapless::Vec::new();
         let mut bonds = &mut table.bonds[..n];
         for (r, forces) in ranges.iter().zip(sinks) {
             let (mine, rest) = core::mem::take(&mut bonds).split_at_mut(r.len());
@@ -299,16 +323,16 @@ impl<S: Scalar> World<'_, S> {
     /// The integration stage in `parts` parts over body ranges of about equal sphere counts;
     /// `touched[p]` is the range contact part p wrote in its scratch arena. Returns the
     /// largest sphere displacement, mm.
-    fn integration_stage<P: Parallel>(
+    fn integration_stage<P: Parallel, const N: usize, const SUMS: usize>(
         &mut self,
         par: &P,
         parts: usize,
         scratch: &mut [ThreadScratch<'_, S>],
-        touched: &Ranges,
+        touched: &Ranges<N>,
     ) -> Result<S, StepError> {
         let nb = self.n_bodies as usize;
         let ns = self.n_spheres as usize;
-        let mut ranges = Ranges::new();
+        let mut ranges = Ranges::<N>::new();
         split_ranges(
             nb,
             parts,
@@ -316,18 +340,17 @@ impl<S: Scalar> World<'_, S> {
             |_| true,
             &mut ranges,
         );
-        let sphere_starts: heapless::Vec<usize, MAX_PARTS> = ranges
+        let sphere_starts: heapless::Vec<usize, N> = ranges
             .iter()
             .map(|r| self.first_sphere_of(r.start))
             .collect();
-        let mut jobs: heapless::Vec<IntegratePart<'_, S>, MAX_PARTS> = heapless::Vec::new();
+        let mut jobs: heapless::Vec<IntegratePart<'_, S, SUMS>, N> = heapless::Vec::new();
         {
             let mut bodies = &mut self.bodies[..nb];
             let mut spheres = &mut self.spheres[..ns];
             let mut own = &mut self.forces[..nb];
             // Each contact part's scratch arena, cut down to what it touched, then split below.
-            let mut beyond: heapless::Vec<(usize, &mut [BodyForce<S>]), MAX_PARTS> =
-                heapless::Vec::new();
+            let mut beyond: heapless::Vec<(usize, &mut [BodyForce<S>]), N> = heapless::Vec::new();
             let usable = scratch.iter_mut().filter(|a| a.len() >= nb);
             for (arena, t) in usable.zip(touched.iter()) {
                 if !t.is_empty() {
@@ -373,7 +396,7 @@ impl<S: Scalar> World<'_, S> {
             }
         }
         let (dt, g) = (self.dt, self.gravity);
-        par.for_each(&mut jobs, &|part: &mut IntegratePart<'_, S>| {
+        par.for_each(&mut jobs, &|part: &mut IntegratePart<'_, S, SUMS>| {
             part.run(dt, g)
         });
         let mut max_disp = S::ZERO;

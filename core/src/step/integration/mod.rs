@@ -25,7 +25,6 @@
 mod rigid_body;
 mod single_sphere;
 
-use super::parts::MAX_PARTS;
 use crate::body::{Body, BodyForce, Sphere};
 use crate::error::{Other, Stage, StepError};
 use crate::num::{Envelope, Scalar, Vec3};
@@ -33,8 +32,10 @@ use core::ops::Range;
 use rigid_body::{clump_envelope, state_of, step_body, Motion, OFFSET_BITS};
 use single_sphere::move_sphere;
 
-/// One part of the integration stage: a range of bodies and their spheres.
-pub(crate) struct IntegratePart<'w, S: Scalar> {
+/// One part of the integration stage: a range of bodies and their spheres, with room for
+/// `SUMS` accumulator arenas (the world's and one per contact part that wrote beyond its
+/// range; sized by the step, see `World::staged`).
+pub(crate) struct IntegratePart<'w, S: Scalar, const SUMS: usize> {
     /// Id of the first body.
     pub first_body: usize,
     /// The bodies.
@@ -45,14 +46,14 @@ pub(crate) struct IntegratePart<'w, S: Scalar> {
     pub spheres: &'w mut [Sphere<S>],
     /// The accumulators of these bodies: the world's and each contact part's private arena
     /// (those that touched the range), with the body-id range each covers.
-    pub sums: heapless::Vec<(Range<usize>, &'w mut [BodyForce<S>]), { MAX_PARTS + 1 }>,
+    pub sums: heapless::Vec<(Range<usize>, &'w mut [BodyForce<S>]), SUMS>,
     /// Largest sphere displacement of the step (L1 norm ≥ Euclidean), mm.
     pub max_disp: S,
     /// The first error, if any.
     pub result: Result<(), StepError>,
 }
 
-impl<S: Scalar> IntegratePart<'_, S> {
+impl<S: Scalar, const SUMS: usize> IntegratePart<'_, S, SUMS> {
     /// Move every body of the part by one step `dt` (ms) under gravity `g` (mm/ms²).
     pub(crate) fn run(&mut self, dt: S, g: Vec3<S>) {
         self.result = self.integrate(dt, g);
