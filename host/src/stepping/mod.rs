@@ -2,8 +2,8 @@
 //!
 //! The core splits the contact and integration stages of a step into parts over disjoint body
 //! ranges and lets the caller run them ([`arachis_core::step::parts::Parallel`]); it owns no
-//! threads. [`Stepper`] runs those parts on a rayon pool of its own, with the per-thread force
-//! arenas the core needs ([`OwnedThreadScratch`]). In fixed point the result is the same bits
+//! threads. [`run`] and [`Stepper`] run those parts on a [`Team`] of threads that spin between
+//! stages, with the per-thread force arenas the core needs ([`OwnedThreadScratch`]). In fixed point the result is the same bits
 //! for any thread count (DESIGN §5; tested in `core/tests/digest_scenarios.rs`), so the count
 //! is a speed setting only.
 //!
@@ -19,16 +19,16 @@
 //! assert_eq!(world.step_count(), 10);
 //! ```
 
-use anyhow::Context;
 use arachis_core::error::StepError;
 use arachis_core::num::Scalar;
 use arachis_core::owned::OwnedThreadScratch;
-use arachis_core::step::parts::Parallel;
 use arachis_core::world::World;
-use rayon::prelude::*;
+
 use std::cell::Cell;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{Arc, Mutex};
+
+pub mod team;
+use team::Team;
 
 /// Largest `--threads` accepted: far more than any machine this runs on has cores, small
 /// enough that a typo (`--threads 100000`) is refused instead of spawning threads.
@@ -83,71 +83,102 @@ pub fn set_default_threads(threads: usize) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Run `steps` steps of `world` on [`run_threads`] threads (the pool is built once per
-/// thread count and shared; the per-thread force arenas are allocated per call, so call it
-/// for many steps at a time). Small worlds, where a thread hand-off costs more than it
+/// Run `steps` steps of `world` on [`run_threads`] threads (the helper threads start and the
+/// per-thread force arenas are allocated per call, so call it for many steps at a time). Small worlds, where a thread hand-off costs more than it
 /// saves, step on the calling thread.
 pub fn run<S: Scalar>(world: &mut World<'_, S>, steps: u64) -> Result<(), StepError> {
     let threads = run_threads();
     if threads <= 1 || world.spheres().len() < MIN_SPHERES_PER_THREAD * threads {
         return world.run(steps);
     }
-    let pool = shared_pool(threads);
     let mut scratch = OwnedThreadScratch::<S>::new(threads, world.bodies().len());
-    let parts = PoolParts {
-        pool: &pool,
-        parts: threads,
-    };
     let mut arenas = scratch.arenas();
-    step_on_pool(world, steps, &parts, &mut arenas)
+    step_on_team(world, steps, threads, &mut arenas)
 }
 
-/// Run `steps` steps with the stepping loop itself on a thread of `parts.pool`: each stage's
-/// parts are then split from that thread's own queue, which the other threads, still
-/// spinning from the stage before, take at once. Calling the pool from outside for each stage
-/// instead put the caller to sleep and woke the pool twice a step: 2 threads then gained only
-/// 1.25–1.35× on the bench bed, with 2 s of system time in futex calls.
-fn step_on_pool<S: Scalar>(
+/// Run `steps` steps on a [`Team`] of `threads` threads: the stepping loop on the calling
+/// thread (part 0), one helper thread per other part, started for this call and let go at
+/// its end. A helper that cannot be started leaves the run on the calling thread alone.
+fn step_on_team<S: Scalar>(
     world: &mut World<'_, S>,
     steps: u64,
-    parts: &PoolParts<'_>,
+    threads: usize,
     arenas: &mut [arachis_core::world::ThreadScratch<'_, S>],
 ) -> Result<(), StepError> {
-    parts.pool.install(|| {
-        for _ in 0..steps {
-            world.step_with(parts, arenas)?;
+    let cores = Cores::reserve(threads);
+    if cores.0 <= 1 {
+        return world.run(steps);
+    }
+    let team = Team::new(cores.0);
+    std::thread::scope(|s| {
+        // Lets the helpers go however the loop below ends, a panic included.
+        let _finish = Finish(&team);
+        for i in 1..cores.0 {
+            let t = &team;
+            let started = std::thread::Builder::new()
+                .name(format!("arachis-step-{i}"))
+                .spawn_scoped(s, move || t.serve(i));
+            if started.is_err() {
+                return world.run(steps);
+            }
         }
-        Ok(())
+        (0..steps).try_for_each(|_| world.step_with(&team, arenas))
     })
+}
+
+/// Cores taken by the threaded runs of this process, their calling threads included.
+static CORES_IN_USE: AtomicUsize = AtomicUsize::new(0);
+
+/// The cores one threaded run holds (at least 1), given back when dropped.
+///
+/// Why: a [`Team`]'s threads wait by spinning, so two runs at once (two tests of one test
+/// binary, say) must not put more threads on the cores than there are cores, or a helper
+/// spins while the thread it waits for has no core. A run alone gets the threads it asks
+/// for; beside others it gets what is free, at least its own calling thread. The result does
+/// not depend on the count.
+struct Cores(usize);
+
+impl Cores {
+    fn reserve(wanted: usize) -> Self {
+        let total = available_cores();
+        let mut in_use = CORES_IN_USE.load(Ordering::Relaxed);
+        loop {
+            let got = if in_use == 0 {
+                wanted
+            } else {
+                wanted.min(total.saturating_sub(in_use)).max(1)
+            };
+            match CORES_IN_USE.compare_exchange_weak(
+                in_use,
+                in_use + got,
+                Ordering::AcqRel,
+                Ordering::Relaxed,
+            ) {
+                Ok(_) => return Cores(got),
+                Err(now) => in_use = now,
+            }
+        }
+    }
+}
+
+impl Drop for Cores {
+    fn drop(&mut self) {
+        CORES_IN_USE.fetch_sub(self.0, Ordering::AcqRel);
+    }
+}
+
+/// Calls [`Team::finish`] when dropped.
+struct Finish<'t>(&'t Team);
+
+impl Drop for Finish<'_> {
+    fn drop(&mut self) {
+        self.0.finish();
+    }
 }
 
 /// Fewer spheres than this per thread step on one thread in [`run`]: a part then holds too
 /// little work to pay for waking a thread each stage (a few microseconds).
 pub const MIN_SPHERES_PER_THREAD: usize = 256;
-
-/// The process's pool of `threads` threads, built on first use.
-fn shared_pool(threads: usize) -> Arc<rayon::ThreadPool> {
-    static POOLS: Mutex<Vec<(usize, Arc<rayon::ThreadPool>)>> = Mutex::new(Vec::new());
-    let mut pools = POOLS.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some((_, p)) = pools.iter().find(|(n, _)| *n == threads) {
-        return p.clone();
-    }
-    // A pool that cannot start degrades to rayon's global pool's behaviour on one thread.
-    let pool = Arc::new(
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .thread_name(|i| format!("arachis-step-{i}"))
-            .build()
-            .unwrap_or_else(|_| {
-                rayon::ThreadPoolBuilder::new()
-                    .num_threads(1)
-                    .build()
-                    .expect("a one-thread pool")
-            }),
-    );
-    pools.push((threads, pool.clone()));
-    pool
-}
 
 /// Check a `--threads` value: 1 to [`MAX_THREADS`].
 pub fn check_threads(threads: usize) -> anyhow::Result<usize> {
@@ -158,26 +189,8 @@ pub fn check_threads(threads: usize) -> anyhow::Result<usize> {
     Ok(threads)
 }
 
-/// Runs the parts of a stage on a rayon pool.
-struct PoolParts<'p> {
-    pool: &'p rayon::ThreadPool,
-    parts: usize,
-}
-
-impl Parallel for PoolParts<'_> {
-    fn parts(&self) -> usize {
-        self.parts
-    }
-    /// Called from a thread of the pool ([`step_on_pool`]): the parts go to its queue.
-    fn for_each<J: Send>(&self, jobs: &mut [J], f: &(dyn Fn(&mut J) + Sync)) {
-        jobs.par_iter_mut().for_each(f);
-    }
-}
-
 /// Steps worlds on a fixed number of threads (module docs).
 pub struct Stepper<S: Scalar> {
-    /// The pool, when more than one thread is asked for.
-    pool: Option<rayon::ThreadPool>,
     threads: usize,
     /// Force arenas of the extra parts, sized for the last world stepped.
     scratch: OwnedThreadScratch<S>,
@@ -185,23 +198,11 @@ pub struct Stepper<S: Scalar> {
 }
 
 impl<S: Scalar> Stepper<S> {
-    /// A stepper on `threads` threads (1 steps on the calling thread). Errors for a count
-    /// outside 1..=[`MAX_THREADS`] or when the operating system refuses the threads.
+    /// A stepper on `threads` threads (1 steps on the calling thread; the helpers start for
+    /// each [`Stepper::run`]). Errors for a count outside 1..=[`MAX_THREADS`].
     pub fn new(threads: usize) -> anyhow::Result<Self> {
         let threads = check_threads(threads)?;
-        let pool = if threads > 1 {
-            Some(
-                rayon::ThreadPoolBuilder::new()
-                    .num_threads(threads)
-                    .thread_name(|i| format!("arachis-step-{i}"))
-                    .build()
-                    .context("cannot start the stepping threads")?,
-            )
-        } else {
-            None
-        };
         Ok(Stepper {
-            pool,
             threads,
             scratch: OwnedThreadScratch::new(0, 0),
             scratch_bodies: 0,
@@ -215,20 +216,16 @@ impl<S: Scalar> Stepper<S> {
 
     /// Run `steps` steps of `world`, stopping at the first error.
     pub fn run(&mut self, world: &mut World<'_, S>, steps: u64) -> Result<(), StepError> {
-        let Some(pool) = &self.pool else {
+        if self.threads == 1 {
             return world.run(steps);
-        };
+        }
         let bodies = world.bodies().len();
         if bodies != self.scratch_bodies {
             self.scratch = OwnedThreadScratch::new(self.threads, bodies);
             self.scratch_bodies = bodies;
         }
-        let parts = PoolParts {
-            pool,
-            parts: self.threads,
-        };
         let mut arenas = self.scratch.arenas();
-        step_on_pool(world, steps, &parts, &mut arenas)
+        step_on_team(world, steps, self.threads, &mut arenas)
     }
 }
 
