@@ -2,10 +2,10 @@
 //!
 //! The core splits the contact and integration stages of a step into parts over disjoint body
 //! ranges and lets the caller run them ([`arachis_core::step::parts::Parallel`]); it owns no
-//! threads. [`run`] and [`Stepper`] run those parts on a [`Team`] of threads that spin between
-//! stages, with the per-thread force arenas the core needs ([`OwnedThreadScratch`]). In fixed point the result is the same bits
-//! for any thread count (DESIGN §5; tested in `core/tests/digest_scenarios.rs`), so the count
-//! is a speed setting only.
+//! threads. [`run`] and [`Stepper`] run those parts on a [`Team`] of threads that spin
+//! between stages, with the per-thread force arenas the core needs ([`OwnedThreadScratch`]).
+//! In fixed point the result is the same bits for any thread count (DESIGN §5; tested in
+//! `core/tests/digest_scenarios.rs`), so the count is a speed setting only.
 //!
 //! ```
 //! use arachis::stepping::Stepper;
@@ -84,8 +84,9 @@ pub fn set_default_threads(threads: usize) -> anyhow::Result<()> {
 }
 
 /// Run `steps` steps of `world` on [`run_threads`] threads (the helper threads start and the
-/// per-thread force arenas are allocated per call, so call it for many steps at a time). Small worlds, where a thread hand-off costs more than it
-/// saves, step on the calling thread.
+/// per-thread force arenas are allocated per call, so call it for many steps at a time).
+/// Small worlds, where a thread hand-off costs more than it saves, step on the calling
+/// thread.
 pub fn run<S: Scalar>(world: &mut World<'_, S>, steps: u64) -> Result<(), StepError> {
     let threads = run_threads();
     if threads <= 1 || world.spheres().len() < MIN_SPHERES_PER_THREAD * threads {
@@ -177,7 +178,7 @@ impl Drop for Finish<'_> {
 }
 
 /// Fewer spheres than this per thread step on one thread in [`run`]: a part then holds too
-/// little work to pay for waking a thread each stage (a few microseconds).
+/// little work to pay for handing a stage to a helper thread.
 pub const MIN_SPHERES_PER_THREAD: usize = 256;
 
 /// Check a `--threads` value: 1 to [`MAX_THREADS`].
