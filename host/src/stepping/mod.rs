@@ -97,9 +97,7 @@ pub fn run<S: Scalar>(world: &mut World<'_, S>, steps: u64) -> Result<(), StepEr
     step_on_team(world, steps, threads, &mut arenas)
 }
 
-/// Run `steps` steps on a [`Team`] of `threads` threads: the stepping loop on the calling
-/// thread (part 0), one helper thread per other part, started for this call and let go at
-/// its end. A helper that cannot be started leaves the run on the calling thread alone.
+/// Run `steps` steps on a [`Team`] of up to `threads` threads, as many as [`Cores`] gives.
 fn step_on_team<S: Scalar>(
     world: &mut World<'_, S>,
     steps: u64,
@@ -107,14 +105,26 @@ fn step_on_team<S: Scalar>(
     arenas: &mut [arachis_core::world::ThreadScratch<'_, S>],
 ) -> Result<(), StepError> {
     let cores = Cores::reserve(threads);
-    if cores.0 <= 1 {
+    step_with_helpers(world, steps, cores.0, arenas)
+}
+
+/// Run `steps` steps in `parts` parts: the stepping loop on the calling thread (part 0), one
+/// helper thread per other part, started for this call and let go at its end. A helper that
+/// cannot be started leaves the run on the calling thread alone.
+fn step_with_helpers<S: Scalar>(
+    world: &mut World<'_, S>,
+    steps: u64,
+    parts: usize,
+    arenas: &mut [arachis_core::world::ThreadScratch<'_, S>],
+) -> Result<(), StepError> {
+    if parts <= 1 {
         return world.run(steps);
     }
-    let team = Team::new(cores.0);
+    let team = Team::new(parts);
     std::thread::scope(|s| {
         // Lets the helpers go however the loop below ends, a panic included.
         let _finish = Finish(&team);
-        for i in 1..cores.0 {
+        for i in 1..parts {
             let t = &team;
             let started = std::thread::Builder::new()
                 .name(format!("arachis-step-{i}"))
@@ -236,42 +246,48 @@ mod tests {
     use arachis_core::prelude::*;
     use arachis_core::scenario::bench_bed::BenchBed;
 
+    /// The digest of bench bed (`particles`, `seed`) after `step` has run it.
+    fn bed_digest(particles: u32, seed: u64, step: impl FnOnce(&mut World<'_, Fx>)) -> u64 {
+        let bed = BenchBed { particles, seed };
+        let mut arena = crate::arena::OwnedStorage::<Fx>::new(bed.storage_lengths());
+        let mut world = bed.build(arena.storage()).unwrap();
+        step(&mut world);
+        world.digest()
+    }
+
     /// The same bed stepped on 1, 2 and 3 threads ends on the same digest.
     #[test]
     fn thread_count_does_not_change_the_bits() {
-        let bed = BenchBed {
-            particles: 300,
-            seed: 7,
-        };
         let digest = |threads| {
-            let mut arena = crate::arena::OwnedStorage::<Fx>::new(bed.storage_lengths());
-            let mut world = bed.build(arena.storage()).unwrap();
-            Stepper::new(threads).unwrap().run(&mut world, 400).unwrap();
-            world.digest()
+            bed_digest(300, 7, |w| {
+                Stepper::new(threads).unwrap().run(w, 400).unwrap()
+            })
         };
         let one = digest(1);
         assert_eq!(digest(2), one);
         assert_eq!(digest(3), one);
     }
 
+    /// Teams of exactly 2 and 3 threads (no core reservation, whatever else runs in the
+    /// process) step the bed to the digest of a serial run.
+    #[test]
+    fn a_team_steps_to_the_serial_bits() {
+        let digest = |parts: usize| {
+            bed_digest(300, 7, |w| {
+                let mut scratch = OwnedThreadScratch::<Fx>::new(parts, w.bodies().len());
+                step_with_helpers(w, 400, parts, &mut scratch.arenas()).unwrap()
+            })
+        };
+        let serial = digest(1);
+        assert_eq!(digest(2), serial);
+        assert_eq!(digest(3), serial);
+    }
+
     /// [`run`] on the default thread count gives the digest of a one-thread run.
     #[test]
     fn run_on_the_default_threads_matches_one_thread() {
-        let bed = BenchBed {
-            particles: 600,
-            seed: 11,
-        };
-        let digest = |threaded: bool| {
-            let mut arena = crate::arena::OwnedStorage::<Fx>::new(bed.storage_lengths());
-            let mut world = bed.build(arena.storage()).unwrap();
-            if threaded {
-                run(&mut world, 300).unwrap();
-            } else {
-                world.run(300).unwrap();
-            }
-            world.digest()
-        };
-        assert_eq!(digest(true), digest(false));
+        let threaded = bed_digest(600, 11, |w| run(w, 300).unwrap());
+        assert_eq!(threaded, bed_digest(600, 11, |w| w.run(300).unwrap()));
     }
 
     #[test]

@@ -196,40 +196,6 @@ mod tests {
         assert_eq!(counts, [5, 4, 3, 2, 2]);
     }
 
-    /// A bench bed stepped on teams of 2 and 3 threads (whatever else runs in the process:
-    /// no core reservation here) ends on the digest of a serial run.
-    #[test]
-    fn a_team_steps_to_the_serial_bits() {
-        use arachis_core::prelude::*;
-        use arachis_core::scenario::bench_bed::BenchBed;
-        let bed = BenchBed {
-            particles: 300,
-            seed: 7,
-        };
-        let digest = |parts: usize| {
-            let mut arena = crate::arena::OwnedStorage::<Fx>::new(bed.storage_lengths());
-            let mut world = bed.build(arena.storage()).unwrap();
-            let mut scratch =
-                arachis_core::owned::OwnedThreadScratch::<Fx>::new(parts, world.bodies().len());
-            let mut arenas = scratch.arenas();
-            let team = Team::new(parts);
-            std::thread::scope(|s| {
-                for i in 1..parts {
-                    let t = &team;
-                    s.spawn(move || t.serve(i));
-                }
-                for _ in 0..400 {
-                    world.step_with(&team, &mut arenas).unwrap();
-                }
-                team.finish();
-            });
-            world.digest()
-        };
-        let serial = digest(1);
-        assert_eq!(digest(2), serial);
-        assert_eq!(digest(3), serial);
-    }
-
     /// A job that panics on a helper makes the stage panic on the caller, not hang.
     #[test]
     fn a_panic_on_a_helper_reaches_the_caller() {
