@@ -59,15 +59,18 @@ impl<S: Scalar, const SUMS: usize> IntegratePart<'_, S, SUMS> {
         self.result = self.integrate(dt, g);
     }
 
-    /// The summed loads of body `id`, with every accumulator of it cleared.
+    /// The summed loads of body `id`, with every accumulator of it cleared. The first arena
+    /// is the part's own, which holds every body of the part: its sums are taken as they
+    /// are, and only the contact parts' arenas are added to them.
     #[inline(always)]
     fn take_sums(&mut self, id: usize) -> BodyForce<S> {
-        let mut total = BodyForce::default();
-        for (range, arena) in self.sums.iter_mut() {
+        let Some(((_, own), beyond)) = self.sums.split_first_mut() else {
+            return BodyForce::default();
+        };
+        let mut total = core::mem::take(&mut own[id - self.first_body]);
+        for (range, arena) in beyond.iter_mut() {
             if range.contains(&id) {
-                let a = &mut arena[id - range.start];
-                total.merge(a);
-                *a = BodyForce::default();
+                total.merge(&core::mem::take(&mut arena[id - range.start]));
             }
         }
         total

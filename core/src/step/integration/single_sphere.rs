@@ -49,18 +49,28 @@ pub(super) fn move_sphere<S: Scalar>(
     })
 }
 
-/// Raw Q32.32 bounds (2^32 × the bounds above): loads < 2^30 N, …
+/// Raw Q32.32 bounds of the raw-integer path. They are tighter than the bounds below for
+/// velocities and the time step, so that the new velocity needs no test of its own:
+/// loads < 2^30 N and N·mm, …
 const LOAD_RAW: u64 = 1 << (32 + LOAD_BITS);
-/// … velocities < 2^24 mm/ms and rad/ms, and accelerations < 2^24 mm/ms², …
-const VELOCITY_RAW: u64 = 1 << (32 + VELOCITY_BITS);
+/// … velocities and spins at the start of the step < 2^21 mm/ms and rad/ms, …
+const START_VELOCITY_RAW: u64 = 1 << (32 + START_VELOCITY_BITS);
+/// … accelerations F/m, T/I and Tr/I < 2^24 mm/ms² and rad/ms², …
+const ACCELERATION_RAW: u128 = 1 << (32 + ACCELERATION_BITS);
 /// … positions < 2^29 mm, …
 const POSITION_RAW: u64 = 1 << (32 + POSITION_BITS);
-/// … time step < 2^4 ms, …
-const TIMESTEP_RAW: i64 = 1 << (32 + TIMESTEP_BITS);
+/// … time step < 2^-2 ms, …
+const SHORT_TIMESTEP_RAW: i64 = 1 << (32 + SHORT_TIMESTEP_BITS);
 /// … gravity < 2^16 mm/ms², …
 const GRAVITY_RAW: u64 = 1 << (32 + GRAVITY_BITS);
 /// … mass < 2^12 g.
 const MASS_RAW: i64 = 1 << (32 + MASS_BITS);
+/// Velocities at the start of a step on the raw-integer path: below 2^21 mm/ms (2·10⁶ m/s).
+const START_VELOCITY_BITS: i32 = 21;
+/// Time steps on the raw-integer path: below 2^-2 ms (250 µs, far above any stable DEM step).
+const SHORT_TIMESTEP_BITS: i32 = -2;
+/// Half a unit of the last place of a Q.32 product, for rounding to nearest.
+const HALF_ULP: i128 = 1 << 31;
 
 /// A single-sphere body and its loads, raw Q32.32.
 struct Q32Sphere {
@@ -88,65 +98,67 @@ struct Q32Move {
     l1: i64,
 }
 
-/// |x| | |y| | |z|: below 2^k iff every component is.
+/// |x| | |y| | |z|: below 2^k iff every component is, and never below the largest |component|.
 #[inline(always)]
 fn magnitude(v: [i64; 3]) -> u64 {
     v[0].unsigned_abs() | v[1].unsigned_abs() | v[2].unsigned_abs()
 }
 
-/// a·b in Q.32, rounded to nearest, as an i128 (not yet range-checked).
+/// a·b in Q.32, rounded to nearest (ties up), as an i128 (not yet range-checked).
 #[inline(always)]
 fn mul_q32(a: i64, b: i64) -> i128 {
-    (a as i128 * b as i128 + (1 << 31)) >> 32
+    (a as i128 * b as i128 + HALF_ULP) >> 32
 }
 
-/// `v·s` in Q.32 if every component stays below `bound` (raw), else `None`.
+/// Whether every rounded product x·s of a component x with |x| ≤ `magnitude` and a factor
+/// s ≥ 0 stays below `bound` (raw): it does when magnitude·s + 2^31 < bound·2^32, since
+/// rounding adds at most half a unit. One product tests a whole vector, instead of one test
+/// per component after the fact.
 #[inline(always)]
-fn scale_within(v: [i64; 3], s: i64, bound: u64) -> Option<[i64; 3]> {
-    let p = [mul_q32(v[0], s), mul_q32(v[1], s), mul_q32(v[2], s)];
-    let m = p[0].unsigned_abs() | p[1].unsigned_abs() | p[2].unsigned_abs();
-    (m < bound as u128).then(|| [p[0] as i64, p[1] as i64, p[2] as i64])
+fn products_within(magnitude: u64, s: i64, bound: u128) -> bool {
+    (magnitude as u128 * s as u128 + HALF_ULP as u128) < bound << 32
 }
 
-/// The step of [`move_sphere`] on raw Q32.32 integers. Inside the bounds: |a| < 2^24,
-/// |a + g| < 2^25 and dt < 2^4 keep (a + g)·dt < 2^29; the new velocity is checked below
-/// 2^24, so |v·dt| < 2^28 and the new position stays below 2^30; the spin increment is below
-/// 2^28 and the rolling cap below |ω|; m·g < 2^28.
+/// The step of [`move_sphere`] on raw Q32.32 integers. Inside the bounds (all strict):
+/// |a| < 2^24 and |g| < 2^16 give |a + g| < 2^25, and dt < 2^-2 keeps the velocity increment
+/// within 2^23, so the new velocity stays below 2^21 + 2^23 + 1 < 2^24 without a test of
+/// its own; |v·dt| ≤ 2^22, so the new position stays below 2^30 and the L1 displacement
+/// below 2^24. The spin increment is within 2^23 likewise, the rolling cap never exceeds
+/// ω·ω̂ ≤ |ω| < 2^24, and m·g < 2^28 before the sum with |F| < 2^30.
 #[inline(always)]
 fn move_sphere_q32(s: &Q32Sphere) -> Option<Q32Move> {
-    let inputs_in = ((magnitude(s.force) | magnitude(s.torque) | s.roll.unsigned_abs()) < LOAD_RAW)
-        & ((magnitude(s.velocity) | magnitude(s.spin)) < VELOCITY_RAW)
+    let (load_force, load_turn) = (magnitude(s.force), magnitude(s.torque) | s.roll as u64);
+    let inputs_in = ((load_force | load_turn) < LOAD_RAW)
+        & ((magnitude(s.velocity) | magnitude(s.spin)) < START_VELOCITY_RAW)
         & (magnitude(s.position) < POSITION_RAW)
         & (magnitude(s.gravity) < GRAVITY_RAW)
         & (s.dt > 0)
-        & (s.dt < TIMESTEP_RAW)
+        & (s.dt < SHORT_TIMESTEP_RAW)
         & (s.mass >= 0)
         & (s.mass < MASS_RAW)
         & (s.inv_mass >= 0)
         & (s.inv_inertia >= 0)
         & (s.roll >= 0);
-    if !inputs_in {
+    // `load_turn` bounds the torque components and the rolling torque at once.
+    if !(inputs_in
+        && products_within(load_force, s.inv_mass, ACCELERATION_RAW)
+        && products_within(load_turn, s.inv_inertia, ACCELERATION_RAW))
+    {
         return None;
     }
-    let acc = scale_within(s.force, s.inv_mass, VELOCITY_RAW)?;
-    let spin_acc = scale_within(s.torque, s.inv_inertia, VELOCITY_RAW)?;
-    let roll_acc = mul_q32(s.roll, s.inv_inertia);
-    if roll_acc >= VELOCITY_RAW as i128 {
-        return None;
-    }
+    let scale = |v: [i64; 3], f: i64| v.map(|x| mul_q32(x, f) as i64);
+    let acc = scale(s.force, s.inv_mass);
+    let spin_acc = scale(s.torque, s.inv_inertia);
+    let roll_acc = mul_q32(s.roll, s.inv_inertia) as i64;
     let dt = s.dt;
     let step = |x: i64| mul_q32(x, dt) as i64;
     // A kinematic body (inverse mass zero) keeps its velocity: no contact force, no gravity.
     let velocity = if s.inv_mass != 0 {
-        let v = [
+        [
             s.velocity[0] + step(acc[0] + s.gravity[0]),
             s.velocity[1] + step(acc[1] + s.gravity[1]),
             s.velocity[2] + step(acc[2] + s.gravity[2]),
-        ];
-        if magnitude(v) >= VELOCITY_RAW {
-            return None;
-        }
-        v
+        ]
     } else {
         s.velocity
     };
@@ -167,10 +179,10 @@ fn move_sphere_q32(s: &Q32Sphere) -> Option<Q32Move> {
             let along = ((spin[0] as i128 * hat[0] as i128
                 + spin[1] as i128 * hat[1] as i128
                 + spin[2] as i128 * hat[2] as i128
-                + (1 << 31))
+                + HALF_ULP)
                 >> 32) as i64;
             if along > 0 {
-                let dec = step(roll_acc as i64).min(along);
+                let dec = step(roll_acc).min(along);
                 spin = [
                     spin[0] - mul_q32(hat[0], dec) as i64,
                     spin[1] - mul_q32(hat[1], dec) as i64,
