@@ -16,7 +16,10 @@
 //!   [`evaluate`] checks the contact against an *envelope* in which no operation can overflow
 //!   the Q32.32 range (±2^31): its inputs, the damping products, the history after its
 //!   increment and the forces (below). A contact outside it returns `None` and is evaluated by
-//!   the terms, which report any overflow. `f64` runs the same code and the same envelope.
+//!   the terms, which report any overflow. `f64` runs the same code without the magnitude
+//!   tests (floating point has no range to leave short of infinity; the geometric conditions
+//!   stay), and one test of its loads sends a contact with an infinite or NaN value to the
+//!   terms.
 //! - **Cheap roots.** The distance |d| comes from one reciprocal root good to 2^-38 (it sets
 //!   the overlap, which needs every bit); √(R*α) and √(a·m*), which only scale stiffness and
 //!   damping, from 64-bit Newton steps good to 2^-28 ([`Envelope::sqrt_coarse`]).
@@ -313,8 +316,23 @@ pub fn evaluate<T: Envelope>(
     l.vt = v - n.scale(l.vn);
     l.a = l.r_star_alpha.sqrt_coarse();
     l.root_am = (l.a * c.m_star).sqrt_coarse();
-    *delta = forces(c, p, &mut l, *delta)?;
-    Some(loads(c, p, &l))
+    let d = forces(c, p, &mut l, *delta)?;
+    let load = loads(c, p, &l);
+    if !T::Q32_32 {
+        // 0·x is 0 for a finite x and NaN for an infinite or NaN one.
+        let all = load.force + load.torque_i + load.torque_j + d;
+        if !((all.x + all.y + all.z + load.roll_i + load.roll_j) * T::ZERO).is_valid() {
+            return None;
+        }
+    }
+    *delta = d;
+    Some(load)
+}
+
+/// Whether the magnitude tests of the envelope apply: for fixed point only (module docs).
+#[inline(always)]
+fn bounded<T: Envelope>() -> bool {
+    T::Q32_32
 }
 
 /// Normal, overlap, lever lengths and R*·α, after the envelope's input checks.
@@ -324,14 +342,14 @@ fn geometry<T: Envelope>(c: &FusedContact<T>, delta: Vec3<T>) -> Option<Lane<T>>
         Geometry::Spheres { d, d2, r_j } => {
             let rs = c.r_i + r_j;
             // Centres closer than rs/2 (or huge radii) leave the envelope.
-            if !(rs.within(REACH_BITS) && d2.mul_int(4) >= rs * rs) {
+            if !((!bounded::<T>() || rs.within(REACH_BITS)) && d2.mul_int(4) >= rs * rs) {
                 return None;
             }
             let (dist, inv) = d2.sqrt_rsqrt();
             (d.scale(inv), rs - dist, r_j)
         }
         Geometry::Wall { normal, overlap } => {
-            if !c.r_i.within(REACH_BITS) {
+            if bounded::<T>() && !c.r_i.within(REACH_BITS) {
                 return None;
             }
             // Lⱼ = 0 for a wall.
@@ -340,11 +358,23 @@ fn geometry<T: Envelope>(c: &FusedContact<T>, delta: Vec3<T>) -> Option<Lane<T>>
     };
     let half = overlap * T::HALF;
     let (len_i, len_j) = (c.r_i - half, r_j - half);
-    let lengths_in = (len_i > T::ZERO)
-        & len_i.within(LENGTH_BITS)
+    if !((len_i > T::ZERO) & (overlap > T::ZERO) & (c.m_star > T::ZERO)) {
+        return None;
+    }
+    let lane = |r_star_alpha| Lane {
+        normal,
+        overlap,
+        len_i,
+        len_j,
+        r_star_alpha,
+        ..Lane::default()
+    };
+    if !bounded::<T>() {
+        return Some(lane(c.r_star * overlap));
+    }
+    let lengths_in = len_i.within(LENGTH_BITS)
         & len_j.within(LENGTH_BITS)
         & c.r_star.within(LENGTH_BITS)
-        & (overlap > T::ZERO)
         & overlap.within(REACH_BITS)
         & c.offset_i.is_none_or(|o| within3(o, LENGTH_BITS))
         & c.offset_j.is_none_or(|o| within3(o, LENGTH_BITS));
@@ -357,17 +387,9 @@ fn geometry<T: Envelope>(c: &FusedContact<T>, delta: Vec3<T>) -> Option<Lane<T>>
         & within3(c.spin_i, SPIN_BITS)
         & within3(c.spin_j, SPIN_BITS)
         & within3(delta, DELTA_BITS)
-        & (c.m_star > T::ZERO)
         & c.m_star.within(MASS_BITS)
         & c.dt.within(TIMESTEP_BITS);
-    inputs_in.then_some(Lane {
-        normal,
-        overlap,
-        len_i,
-        len_j,
-        r_star_alpha,
-        ..Lane::default()
-    })
+    inputs_in.then(|| lane(r_star_alpha))
 }
 
 /// Hertz with damping (eqs. (3), (4)) clipped at zero; Mindlin spring with history
@@ -382,6 +404,7 @@ fn forces<T: Envelope>(
     delta: Vec3<T>,
 ) -> Option<Vec3<T>> {
     let n = l.normal;
+    let bounded = bounded::<T>();
     let (damp_n, damp_n_in) = (p.normal_damping * l.root_am).mul_within(l.vn, PRODUCT_BITS);
     let mut f_n = p.four_thirds_e_star * (l.a * l.overlap) - damp_n;
     if f_n < T::ZERO {
@@ -390,11 +413,11 @@ fn forces<T: Envelope>(
     let d = delta - n.scale(delta.dot(n)) + l.vt.scale(c.dt);
     let st = p.eight_g_star * l.a;
     let (damp_t, damp_t_in) = scale_within(l.vt, p.tangential_damping * l.root_am, PRODUCT_BITS);
-    if !(damp_n_in & damp_t_in & within3(d, DELTA_BITS)) {
+    if bounded && !(damp_n_in & damp_t_in & within3(d, DELTA_BITS)) {
         return None;
     }
     let f_t = -(d.scale(st) + damp_t);
-    if !(f_n.within(FORCE_BITS) & within3(f_t, FORCE_BITS)) {
+    if bounded && !(f_n.within(FORCE_BITS) & within3(f_t, FORCE_BITS)) {
         return None;
     }
     l.f_n = f_n;

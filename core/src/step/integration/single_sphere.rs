@@ -2,9 +2,11 @@
 //! overflow (the module docs of [`super`] give the integrator itself).
 //!
 //! [`move_sphere`] takes the raw-integer path for Q32.32 fixed point ([`move_sphere_q32`]):
-//! twelve 128-bit products, each bound tested once per vector (|x| | |y| | |z| against a power
-//! of two), the unit spin vector from [`Envelope::unit3`]. Floating point takes the same
-//! arithmetic written on [`Scalar::Fast`]. Outside the bounds it returns `None`, and the
+//! nineteen 128-bit products; each input vector's magnitude (|x| | |y| | |z|) is tested once
+//! against a power of two, and the products with an inverse mass or inertia once per vector
+//! by one bound product; the unit spin vector comes from [`Envelope::unit3`]. Floating point
+//! takes the same arithmetic written on [`Scalar::Fast`] and tests only that its results are
+//! finite ([`move_sphere_generic`]). Outside the bounds either returns `None`, and the
 //! checked arithmetic moves the body and reports any overflow.
 
 use crate::body::{Body, BodyForce};
@@ -210,19 +212,13 @@ fn move_sphere_q32(s: &Q32Sphere) -> Option<Q32Move> {
     })
 }
 
-/// Magnitudes inside which the single-sphere step cannot overflow: powers of two of
-/// accelerations (mm/ms²) and velocities (mm/ms, rad/ms) …
+/// Magnitudes inside which the raw-integer step cannot overflow, as powers of two: of
+/// accelerations (mm/ms², rad/ms²) …
 const ACCELERATION_BITS: i32 = 24;
-/// … of velocities at the start and end of the step (mm/ms, rad/ms) …
-const VELOCITY_BITS: i32 = 24;
 /// … of positions (mm) …
 const POSITION_BITS: i32 = 29;
-/// … of the time step (ms) …
-const TIMESTEP_BITS: i32 = 4;
 /// … of force and torque sums (N, N·mm) …
 const LOAD_BITS: i32 = 30;
-/// … of the inverse mass and inertia (1/g, 1/(g·mm²)) …
-const INVERSE_BITS: i32 = 30;
 /// … of gravity (mm/ms²) …
 const GRAVITY_BITS: i32 = 16;
 /// … and of the mass (g), for the reported weight.
@@ -239,13 +235,12 @@ pub(super) struct SphereMove<S> {
     pub l1_displacement: S,
 }
 
-/// One step of a single-sphere body (module docs) in the unchecked [`Scalar::Fast`]
-/// arithmetic, or `None` when a magnitude lies outside the bounds above (then the checked
-/// arithmetic moves the body and reports any overflow). Each bound is tested once for a whole
-/// vector ([`Envelope::magnitude3`]). Inside them: a = F/m < 2^24 and (a + g)·dt < 2^28
-/// (checked products), the new velocity is checked below 2^24, so v·dt < 2^28, the new
-/// position < 2^29 + 2^28 and the L1 displacement < 2^30; the spin increment T/I·dt < 2^28
-/// and the rolling cap never exceeds ω·ω̂ ≤ |ω|.
+/// One step of a single-sphere body (module docs) in floating point ([`Scalar::Fast`] is the
+/// scalar itself), or `None` when a result is not finite (then the checked arithmetic moves
+/// the body and reports the overflow). Floating point has no range to leave short of
+/// infinity, so instead of bounds on every input one test on the results finds an infinite
+/// or NaN value: their sum times zero, which is NaN if any of them is (or if the sum itself
+/// overflows, and then the checked path gives the same finite values).
 #[inline(always)]
 fn move_sphere_generic<S: Scalar>(
     b: &Body<S>,
@@ -255,7 +250,6 @@ fn move_sphere_generic<S: Scalar>(
 ) -> Option<SphereMove<S>> {
     type F<S> = <S as Scalar>::Fast;
     let fast3 = |v: Vec3<S>| v.map(S::to_fast);
-    let within3 = |v: Vec3<F<S>>, bits| F::<S>::magnitude3(v).within(bits);
     let (force, torque, roll) = (
         fast3(sums.force()),
         fast3(sums.torque()),
@@ -272,60 +266,36 @@ fn move_sphere_generic<S: Scalar>(
         b.inv_inertia.x.to_fast(),
         b.mass.to_fast(),
     );
-    let inputs_in = within3(force, LOAD_BITS)
-        & within3(torque, LOAD_BITS)
-        & roll.within(LOAD_BITS)
-        & within3(vel, VELOCITY_BITS)
-        & within3(w0, VELOCITY_BITS)
-        & within3(pos, POSITION_BITS)
-        & within3(g, GRAVITY_BITS)
-        & dt.within(TIMESTEP_BITS)
-        & inv_m.within(INVERSE_BITS)
-        & inv_i.within(INVERSE_BITS)
-        & mass.within(MASS_BITS);
-    if !inputs_in {
-        return None;
-    }
-    // The three products with an inverse mass or inertia are tested exactly
-    // (`mul_within` sees the whole product), since a light body has a large inverse.
-    let scaled = |v: Vec3<F<S>>, s: F<S>| {
-        let (x, ox) = v.x.mul_within(s, ACCELERATION_BITS);
-        let (y, oy) = v.y.mul_within(s, ACCELERATION_BITS);
-        let (z, oz) = v.z.mul_within(s, ACCELERATION_BITS);
-        (Vec3::new(x, y, z), ox & oy & oz)
-    };
-    let (acc, acc_in) = scaled(force, inv_m);
-    let (spin_acc, spin_in) = scaled(torque, inv_i);
-    let (roll_acc, roll_in) = roll.mul_within(inv_i, ACCELERATION_BITS);
-    if !(acc_in & spin_in & roll_in) {
-        return None;
-    }
+    let acc = force.scale(inv_m);
+    let spin_acc = torque.scale(inv_i);
     // A kinematic body (inverse mass zero) keeps its velocity: no contact force, no gravity.
     let velocity = if inv_m != F::<S>::ZERO {
         vel + (acc + g).scale(dt)
     } else {
         vel
     };
-    if !within3(velocity, VELOCITY_BITS) {
-        return None;
-    }
     let dx = velocity.scale(dt);
     let mut w = w0 + spin_acc.scale(dt);
     if roll > F::<S>::ZERO {
         if let Some(hat) = F::<S>::unit3(w0) {
             let along = w.dot(hat);
             if along > F::<S>::ZERO {
-                w -= hat.scale((roll_acc * dt).min(along));
+                w -= hat.scale((roll * inv_i * dt).min(along));
             }
         }
+    }
+    let (position, weight) = (pos + dx, g.scale(mass));
+    let all = velocity + position + w + force + weight + torque;
+    // 0·x is 0 for a finite x and NaN for an infinite or NaN one.
+    if !S::from_fast((all.x + all.y + all.z + roll) * F::<S>::ZERO).is_valid() {
+        return None;
     }
     let back = |v: Vec3<F<S>>| v.map(S::from_fast);
     Some(SphereMove {
         velocity: back(velocity),
-        position: back(pos + dx),
+        position: back(position),
         angular_velocity: back(w),
-        // m < 2^12 and |g| < 2^16 keep m·g < 2^28 before the sum with |F| < 2^30.
-        force: back(force + g.scale(mass)),
+        force: back(force + weight),
         torque: back(torque),
         roll: S::from_fast(roll),
         l1_displacement: S::from_fast(dx.l1_norm()),
