@@ -319,9 +319,9 @@ pub fn evaluate<T: Envelope>(
     let d = forces(c, p, &mut l, *delta)?;
     let load = loads(c, p, &l);
     if !T::Q32_32 {
-        // 0·x is 0 for a finite x and NaN for an infinite or NaN one.
+        // The sum is infinite or NaN if any of its terms is (or if it overflows itself).
         let all = load.force + load.torque_i + load.torque_j + d;
-        if !((all.x + all.y + all.z + load.roll_i + load.roll_j) * T::ZERO).is_valid() {
+        if !(all.x + all.y + all.z + load.roll_i + load.roll_j).is_valid() {
             return None;
         }
     }

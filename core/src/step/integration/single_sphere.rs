@@ -239,7 +239,7 @@ pub(super) struct SphereMove<S> {
 /// scalar itself), or `None` when a result is not finite (then the checked arithmetic moves
 /// the body and reports the overflow). Floating point has no range to leave short of
 /// infinity, so instead of bounds on every input one test on the results finds an infinite
-/// or NaN value: their sum times zero, which is NaN if any of them is (or if the sum itself
+/// or NaN value: their sum, which is not finite if any of them is not (or if the sum itself
 /// overflows, and then the checked path gives the same finite values).
 #[inline(always)]
 fn move_sphere_generic<S: Scalar>(
@@ -286,8 +286,8 @@ fn move_sphere_generic<S: Scalar>(
     }
     let (position, weight) = (pos + dx, g.scale(mass));
     let all = velocity + position + w + force + weight + torque;
-    // 0·x is 0 for a finite x and NaN for an infinite or NaN one.
-    if !S::from_fast((all.x + all.y + all.z + roll) * F::<S>::ZERO).is_valid() {
+    // The sum is infinite or NaN if any of its terms is (or if it overflows itself).
+    if !S::from_fast(all.x + all.y + all.z + roll).is_valid() {
         return None;
     }
     let back = |v: Vec3<F<S>>| v.map(S::from_fast);
