@@ -69,6 +69,7 @@ mod plant_calibration;
 mod plant_generator;
 mod plant_study;
 mod plant_variety;
+mod pod_bulk_density;
 mod pod_effects;
 mod pour_cli;
 mod pulloff_cli;

@@ -19,6 +19,7 @@ pub const RIGS: &[&RigKind] = &[
     &super::hopper::KIND,
     &super::drum::KIND,
     &super::bulk_density::KIND,
+    &super::pod_bulk_density::KIND,
     &super::rebound::KIND,
     &super::press::KIND,
     &super::fall::KIND,
@@ -42,6 +43,7 @@ pub fn pod_test(experiment: Experiment) -> PodTest {
         Experiment::Repose => super::repose_cylinder::TEST,
         Experiment::InclineSlide => super::incline::TEST,
         Experiment::Compression => super::compression::TEST,
+        Experiment::PodBulkDensity => super::pod_bulk_density::TEST,
         Experiment::PlateDrop => super::pod_bench::PLATE_DROP_TEST,
         Experiment::Rolling => super::pod_bench::ROLLING_TEST,
     }

@@ -13,6 +13,7 @@
 //! | `bench_bed` | [`bench_bed`] | bed height of pod spheres poured into a cylinder (DESIGN §8) |
 //! | `hopper` | [`hopper`] | mass flow rate of pod spheres out of a silo through an orifice |
 //! | `bulk_density` | [`bulk_density`] | bulk density of pod spheres poured from a drop height |
+//! | `pod_bulk_density` | [`pod_bulk_density`] | bulk density of the study's pods poured from a drop height |
 //! | `drum` | [`drum`] | dynamic angle of repose of pod spheres in a rotating drum |
 //! | `rebound`, `press`, `fall`, `unload`, `roll` | [`rebound`], [`press`], [`fall`], [`unload`], [`roll`] | one pod sphere: restitution, overlap, fall time, rolling speed |
 //!
@@ -35,6 +36,7 @@ pub mod incline;
 pub mod kind;
 pub mod parameter;
 pub mod pod_bench;
+pub mod pod_bulk_density;
 pub mod pod_world;
 pub mod press;
 pub mod pull_off;

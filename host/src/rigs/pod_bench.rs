@@ -289,6 +289,9 @@ fn responses(observation: &Observation) -> Responses {
         ObservationDetails::Compression(d) => {
             out.insert("peak_force".into(), d.peak_force_n);
         }
+        ObservationDetails::PodBulkDensity(d) => {
+            out.insert(super::pod_bulk_density::BED_LEVEL.into(), d.level_mm);
+        }
         ObservationDetails::Repose(_) => {}
     }
     out
@@ -306,6 +309,7 @@ impl Rig for PodBenchRig<'_> {
             Experiment::Compression => "compression between two plates, seed 000 §2.5.3",
             Experiment::PlateDrop => "drop on the 45° plate, seed 000 §2.6.1",
             Experiment::Rolling => "rolling on an incline, seed 000 §2.6.3",
+            Experiment::PodBulkDensity => "poured bulk density",
         };
         format!("Arachis DEM virtual bench experiment (fixed-point core; {what})")
     }

@@ -19,16 +19,19 @@ pub enum Experiment {
     Rolling,
     /// Compression between two plates (apparent modulus, seed 000 §2.5.3).
     Compression,
+    /// Pods poured from a drop height into a cylinder (bulk density, issue 22).
+    PodBulkDensity,
 }
 
 impl Experiment {
     /// Every experiment, in declaration order.
-    pub const ALL: [Experiment; 5] = [
+    pub const ALL: [Experiment; 6] = [
         Self::Repose,
         Self::PlateDrop,
         Self::InclineSlide,
         Self::Rolling,
         Self::Compression,
+        Self::PodBulkDensity,
     ];
 
     /// The name used in study files.
@@ -39,6 +42,7 @@ impl Experiment {
             Self::InclineSlide => "incline_slide",
             Self::Rolling => "rolling",
             Self::Compression => "compression",
+            Self::PodBulkDensity => "pod_bulk_density",
         }
     }
 }

@@ -30,6 +30,8 @@ pub enum ObservationDetails {
     InclineSlide(InclineDetails),
     /// Compression rig.
     Compression(CompressionDetails),
+    /// Pod bulk-density rig.
+    PodBulkDensity(BulkDensityDetails),
 }
 
 /// The result of one virtual experiment.
@@ -112,4 +114,43 @@ pub struct CompressionDetails {
     pub radius_mm: f64,
     /// Time step, s.
     pub dt_s: f64,
+}
+
+/// One pod of a settled bed: its mass and its spheres where they lie.
+#[derive(Debug, Clone)]
+pub struct BedPod {
+    /// Mass, kg.
+    pub mass_kg: f64,
+    /// Its spheres: centres and radii, mm.
+    pub spheres: Vec<PileSphere>,
+}
+
+/// Details of the pod bulk-density run (`crate::rigs::pod_bulk_density`).
+#[derive(Debug, Clone, Serialize)]
+pub struct BulkDensityDetails {
+    /// Pods poured.
+    pub pods: u32,
+    /// Spheres over all pods.
+    pub spheres: u32,
+    /// Cylinder diameter used, mm (the repose rig's, scaled for the mode).
+    pub cylinder_diameter_mm: f64,
+    /// Drop height: floor to the lowest pods' centres of mass at release, mm.
+    pub drop_height_mm: f64,
+    /// Time step, s.
+    pub dt_s: f64,
+    /// End of the run, s.
+    pub end_s: f64,
+    /// Steps run.
+    pub steps: u64,
+    /// Kinetic energy at the end, J.
+    pub final_kinetic_energy_j: f64,
+    /// The bed's level (mean height of its top surface), mm.
+    pub level_mm: f64,
+    /// The measuring slab's bottom and top above the floor, mm.
+    pub slab_mm: [f64; 2],
+    /// Pod mass inside the slab, kg.
+    pub slab_mass_kg: f64,
+    /// The settled bed, pod by pod (for tests and pictures).
+    #[serde(skip)]
+    pub bed: Vec<BedPod>,
 }
