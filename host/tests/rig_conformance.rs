@@ -1,6 +1,6 @@
 //! Every rig of the catalogue passes the rig conformance test (`rigs::conformance`, the
 //! test `docs/architecture.md` asks of a new rig), each on one request it can run: the pod
-//! rigs on the shipped study (the bulk density at its default drop height, the repose rig on the cheap test pile, about 25 CPU-s for its
+//! rigs on the shipped study (the bulk density and the drum at their default conditions, the repose rig on the cheap test pile, about 25 CPU-s for its
 //! two piles), the pull-off rig on seed 001's study, the single-sphere rigs on the diagnosis
 //! tutorial's calibration, the harvest rig on a short drum. The two pod rigs that are
 //! measurable but not simulated yet refuse to run, with a reason.
@@ -56,6 +56,7 @@ fn the_pod_rigs_conform() {
     conforms(&test_pile_study(), "repose", &condition);
     let poured = study.condition_of("pod_bulk_density");
     conforms(&study, "pod_bulk_density", &poured);
+    conforms(&study, "pod_drum", &study.condition_of("pod_drum"));
 }
 
 #[test]

@@ -70,6 +70,7 @@ mod plant_generator;
 mod plant_study;
 mod plant_variety;
 mod pod_bulk_density;
+mod pod_drum;
 mod pod_effects;
 mod pour_cli;
 mod pulloff_cli;

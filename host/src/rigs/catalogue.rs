@@ -20,6 +20,7 @@ pub const RIGS: &[&RigKind] = &[
     &super::drum::KIND,
     &super::bulk_density::KIND,
     &super::pod_bulk_density::KIND,
+    &super::pod_drum::KIND,
     &super::rebound::KIND,
     &super::press::KIND,
     &super::fall::KIND,
@@ -44,6 +45,7 @@ pub fn pod_test(experiment: Experiment) -> PodTest {
         Experiment::InclineSlide => super::incline::TEST,
         Experiment::Compression => super::compression::TEST,
         Experiment::PodBulkDensity => super::pod_bulk_density::TEST,
+        Experiment::PodDrum => super::pod_drum::TEST,
         Experiment::PlateDrop => super::pod_bench::PLATE_DROP_TEST,
         Experiment::Rolling => super::pod_bench::ROLLING_TEST,
     }

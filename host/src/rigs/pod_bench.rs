@@ -292,7 +292,7 @@ fn responses(observation: &Observation) -> Responses {
         ObservationDetails::PodBulkDensity(d) => {
             out.insert(super::pod_bulk_density::BED_LEVEL.into(), d.level_mm);
         }
-        ObservationDetails::Repose(_) => {}
+        ObservationDetails::Repose(_) | ObservationDetails::PodDrum(_) => {}
     }
     out
 }
@@ -310,6 +310,7 @@ impl Rig for PodBenchRig<'_> {
             Experiment::PlateDrop => "drop on the 45° plate, seed 000 §2.6.1",
             Experiment::Rolling => "rolling on an incline, seed 000 §2.6.3",
             Experiment::PodBulkDensity => "poured bulk density",
+            Experiment::PodDrum => "rotating drum",
         };
         format!("Arachis DEM virtual bench experiment (fixed-point core; {what})")
     }

@@ -21,17 +21,20 @@ pub enum Experiment {
     Compression,
     /// Pods poured from a drop height into a cylinder (bulk density, issue 22).
     PodBulkDensity,
+    /// Pods in a rotating drum (dynamic angle of repose, issue 22).
+    PodDrum,
 }
 
 impl Experiment {
     /// Every experiment, in declaration order.
-    pub const ALL: [Experiment; 6] = [
+    pub const ALL: [Experiment; 7] = [
         Self::Repose,
         Self::PlateDrop,
         Self::InclineSlide,
         Self::Rolling,
         Self::Compression,
         Self::PodBulkDensity,
+        Self::PodDrum,
     ];
 
     /// The name used in study files.
@@ -43,6 +46,7 @@ impl Experiment {
             Self::Rolling => "rolling",
             Self::Compression => "compression",
             Self::PodBulkDensity => "pod_bulk_density",
+            Self::PodDrum => "pod_drum",
         }
     }
 }

@@ -32,6 +32,8 @@ pub enum ObservationDetails {
     Compression(CompressionDetails),
     /// Pod bulk-density rig.
     PodBulkDensity(BulkDensityDetails),
+    /// Pod drum rig.
+    PodDrum(DrumDetails),
 }
 
 /// The result of one virtual experiment.
@@ -153,4 +155,35 @@ pub struct BulkDensityDetails {
     /// The settled bed, pod by pod (for tests and pictures).
     #[serde(skip)]
     pub bed: Vec<BedPod>,
+}
+
+/// Details of the pod drum run (`crate::rigs::pod_drum`).
+#[derive(Debug, Clone, Serialize)]
+pub struct DrumDetails {
+    /// Pods in the drum.
+    pub pods: u32,
+    /// Spheres over all pods.
+    pub spheres: u32,
+    /// Drum radius, mm.
+    pub radius_mm: f64,
+    /// Drum length between its end plates, mm.
+    pub length_mm: f64,
+    /// Drum speed, rpm.
+    pub speed_rpm: f64,
+    /// Froude number ω²R/g.
+    pub froude: f64,
+    /// Time step, s.
+    pub dt_s: f64,
+    /// The settled bed's angle before the drum turned, degrees.
+    pub settled_angle_deg: f64,
+    /// When the drum started to turn, s.
+    pub spin_start_s: f64,
+    /// End of the run, s.
+    pub end_s: f64,
+    /// Steps run.
+    pub steps: u64,
+    /// Each reading of the bed's angle, degrees.
+    pub samples_deg: Vec<f64>,
+    /// Their sample standard deviation, degrees.
+    pub sample_sd_deg: f64,
 }
