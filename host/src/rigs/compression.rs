@@ -90,14 +90,7 @@ pub fn run(
                     h.max(s.centre_mm[2] + s.radius_mm),
                 )
             });
-    w.add_wall(WallSpec::fixed(
-        WallGeometry::Plane {
-            point_m: [0.0; 3],
-            normal: [0.0, 0.0, 1.0],
-        },
-        mats.wall,
-    ))
-    .map_err(e)?;
+    add_floor(&mut w, mats, EXPERIMENT)?;
     // The pod rests with its lowest point on the floor (set exactly: no settling drop).
     let centre_z = -low;
     let top_mm = high - low;

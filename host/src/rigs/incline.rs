@@ -84,14 +84,7 @@ pub fn run(
     let mut arena = Arena::new(inputs, 1, template.spheres.len());
     let mut w = arena.world(EXPERIMENT)?;
     let mats = add_materials(&mut w, inputs, EXPERIMENT)?;
-    w.add_wall(WallSpec::fixed(
-        WallGeometry::Plane {
-            point_m: [0.0; 3],
-            normal: [0.0, 0.0, 1.0],
-        },
-        mats.wall,
-    ))
-    .map_err(|s| setup_error(EXPERIMENT, s))?;
+    add_floor(&mut w, mats, EXPERIMENT)?;
     let lowest = template
         .spheres
         .iter()

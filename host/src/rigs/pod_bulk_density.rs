@@ -154,14 +154,7 @@ pub fn run(
     let mats = add_materials(&mut w, inputs, EXPERIMENT)?;
     let e = |s| setup_error(EXPERIMENT, s);
     let radius_mm = 0.5 * layout.diameter_mm;
-    w.add_wall(WallSpec::fixed(
-        WallGeometry::Plane {
-            point_m: [0.0; 3],
-            normal: [0.0, 0.0, 1.0],
-        },
-        mats.wall,
-    ))
-    .map_err(e)?;
+    add_floor(&mut w, mats, EXPERIMENT)?;
     w.add_wall(WallSpec::fixed(
         WallGeometry::Cylinder {
             base_m: [0.0; 3],

@@ -231,14 +231,7 @@ pub fn run(
     let mut w = arena.world(EXPERIMENT)?;
     let mats = add_materials(&mut w, inputs, EXPERIMENT)?;
     let e = |s| setup_error(EXPERIMENT, s);
-    w.add_wall(WallSpec::fixed(
-        WallGeometry::Plane {
-            point_m: [0.0; 3],
-            normal: [0.0, 0.0, 1.0],
-        },
-        mats.wall,
-    ))
-    .map_err(e)?;
+    add_floor(&mut w, mats, EXPERIMENT)?;
     let cylinder = w
         .add_wall(WallSpec {
             geometry: WallGeometry::Cylinder {

@@ -336,6 +336,22 @@ pub fn add_materials(
     Ok(RigMaterials { pod, wall })
 }
 
+/// Adds the steel floor of a pod rig: the plane z = 0, facing up, of the wall material.
+pub fn add_floor(
+    w: &mut World<'_, Fx>,
+    mats: RigMaterials,
+    experiment: Experiment,
+) -> Result<WallId, ExperimentError> {
+    w.add_wall(WallSpec::fixed(
+        WallGeometry::Plane {
+            point_m: [0.0; 3],
+            normal: [0.0, 0.0, 1.0],
+        },
+        mats.wall,
+    ))
+    .map_err(|s| setup_error(experiment, s))
+}
+
 /// Rotation matrix of unit quaternion `q = [w, x, y, z]` (rows).
 pub fn quat_matrix(q: [f64; 4]) -> [[f64; 3]; 3] {
     let [w, x, y, z] = q;
