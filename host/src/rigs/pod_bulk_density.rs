@@ -122,11 +122,7 @@ pub fn run(
         experiment: EXPERIMENT.name(),
         reason,
     };
-    let bound_mm = inputs
-        .templates
-        .iter()
-        .map(|t| t.bounding_radius_mm)
-        .fold(0.0, f64::max);
+    let bound_mm = inputs.max_bounding_radius_mm();
     if drop_mm < bound_mm + WALL_CLEARANCE_MM {
         return Err(study_error(format!(
             "a drop height of {drop_mm} mm puts the pods into the floor: it must be at least \

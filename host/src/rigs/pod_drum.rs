@@ -130,11 +130,7 @@ impl DrumLayout {
             .iter()
             .map(|&k| inputs.template(k).spheres.len())
             .sum();
-        let bound = inputs
-            .templates
-            .iter()
-            .map(|t| t.bounding_radius_mm)
-            .fold(0.0, f64::max);
+        let bound = inputs.max_bounding_radius_mm();
         let cell = 2.0 * bound + CELL_GAP_MM;
         let radius_mm = DRUM_RADIUS_IN_POD_RADII * bound;
         let section = layer_points(radius_mm - bound - WALL_CLEARANCE_MM, cell);

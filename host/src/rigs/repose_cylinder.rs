@@ -161,11 +161,7 @@ impl Layout {
         };
         let diameter_mm = repose.cylinder_diameter_mm * scale;
         let radius_mm = 0.5 * diameter_mm;
-        let bound = inputs
-            .templates
-            .iter()
-            .map(|t| t.bounding_radius_mm)
-            .fold(0.0, f64::max);
+        let bound = inputs.max_bounding_radius_mm();
         let cell = 2.0 * bound + CELL_GAP_MM;
         let reach = radius_mm - bound - WALL_CLEARANCE_MM;
         if reach < 0.0 {

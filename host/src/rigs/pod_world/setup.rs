@@ -213,6 +213,15 @@ impl RunInputs {
             .fold(f64::INFINITY, f64::min)
     }
 
+    /// Bounding radius of the largest particle class, mm: half the lattice cell of the bulk
+    /// rigs' layouts.
+    pub fn max_bounding_radius_mm(&self) -> f64 {
+        self.templates
+            .iter()
+            .map(|t| t.bounding_radius_mm)
+            .fold(0.0, f64::max)
+    }
+
     /// The most common particle class (the single particle of the one-pod rigs); the first
     /// of equals.
     pub fn typical_class(&self) -> usize {
