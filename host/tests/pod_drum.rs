@@ -13,15 +13,15 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use arachis::rigs::pod_drum::{run, settle, DrumLayout, ROTATION_SPEED};
+use arachis::rigs::pod_drum::{run, spin, DrumLayout, MAX_SETTLE_S, ROTATION_SPEED};
 use arachis::rigs::pod_world::frames::FrameRecorder;
 use arachis::rigs::pod_world::setup::{
-    add_materials, run_steps, set_rayleigh_timestep, steps_for, Arena, RunInputs,
+    add_materials, run_steps, set_rayleigh_timestep, settle, steps_for, Arena, RunInputs,
 };
 use arachis::rigs::pod_world::{
     Experiment, ModeName, ObservationDetails, ParameterValues, RunOptions, TemplateCache,
 };
-use arachis::rigs::repose_cylinder::{at_rest_energy_j, CELL_GAP_MM};
+use arachis::rigs::repose_cylinder::{at_rest_energy_j, CELL_GAP_MM, CHECK_INTERVAL_S, MIN_FILL_S};
 use arachis::study::Study;
 use arachis_core::scenario::drum::bed_angle_deg;
 
@@ -81,20 +81,27 @@ fn a_slow_small_turn_lifts_the_bed_as_a_block() {
     let mut arena = Arena::new(&i, layout.particles.len(), layout.sphere_total);
     let mut w = arena.world(Experiment::PodDrum).unwrap();
     let mats = add_materials(&mut w, &i, Experiment::PodDrum).unwrap();
-    let walls = layout.build(&mut w, &i, mats).unwrap();
+    layout.build(&mut w, &i, mats).unwrap();
     set_rayleigh_timestep(&mut w, &i, Experiment::PodDrum).unwrap();
     let mut frames = FrameRecorder::new(None);
+    let at_rest_j = at_rest_energy_j(&i, layout.particles.len());
+    let chunk = steps_for(&w, CHECK_INTERVAL_S);
+    let (from_s, until_s) = (MIN_FILL_S, MAX_SETTLE_S);
     settle(
         &mut w,
-        at_rest_energy_j(&i, layout.particles.len()),
+        chunk,
+        from_s,
+        until_s,
+        at_rest_j,
         &mut frames,
+        Experiment::PodDrum,
     )
     .unwrap();
     // 2 rpm for a turn of 0.25 rad (14.3°): far below the pods' angle of stability.
     let omega = 2.0 * std::f64::consts::TAU / 60.0;
     let turn = 0.25;
     let before = bed_angle_deg(&w, omega);
-    walls.spin(&mut w, omega).unwrap();
+    spin(&mut w, omega).unwrap();
     let steps = steps_for(&w, turn / omega);
     run_steps(&mut w, steps, Experiment::PodDrum).unwrap();
     let after = bed_angle_deg(&w, omega);

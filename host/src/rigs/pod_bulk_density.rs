@@ -182,14 +182,16 @@ pub fn run(
     let landed_s = landing_time_s(highest_mm, fill_speed, inputs.simulation.gravity_m_s2);
     let at_rest_j = at_rest_energy_j(inputs, n);
     let chunk = steps_for(&w, CHECK_INTERVAL_S);
-    loop {
-        run_steps(&mut w, chunk, EXPERIMENT)?;
-        frames.record(&w);
-        let t = w.time_s();
-        if (t >= landed_s && kinetic_energy_j(&w) < at_rest_j) || t >= landed_s + MAX_SETTLE_S {
-            break;
-        }
-    }
+    let until_s = landed_s + MAX_SETTLE_S;
+    settle(
+        &mut w,
+        chunk,
+        landed_s,
+        until_s,
+        at_rest_j,
+        &mut frames,
+        EXPERIMENT,
+    )?;
 
     // Read the level and weigh the slab.
     let bed = bed_of(&w);

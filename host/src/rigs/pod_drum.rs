@@ -21,7 +21,7 @@
 use std::f64::consts::TAU;
 
 use arachis_core::prelude::*;
-use arachis_core::scenario::drum::bed_angle_deg;
+use arachis_core::scenario::drum::{bed_angle_deg, Drum, FAR_END, NEAR_END, SHELL};
 use arachis_core::scenario::SplitMix64;
 
 use super::kind::{ConditionKey, Quantity, RigKind, WorldKind};
@@ -166,7 +166,7 @@ impl DrumLayout {
         w: &mut World<'_, Fx>,
         inputs: &RunInputs,
         mats: RigMaterials,
-    ) -> Result<DrumWalls, ExperimentError> {
+    ) -> Result<(), ExperimentError> {
         let e = |s| setup_error(EXPERIMENT, s);
         let half_m = 0.5 * self.length_mm * M_PER_MM;
         let shell = w
@@ -191,6 +191,7 @@ impl DrumLayout {
         };
         let near = w.add_wall(plate(-half_m, 1.0)).map_err(e)?;
         let far = w.add_wall(plate(half_m, -1.0)).map_err(e)?;
+        debug_assert_eq!((shell, near, far), (SHELL, NEAR_END, FAR_END));
         for p in &self.particles {
             let t = inputs.template(p.class);
             add_pod(
@@ -203,48 +204,17 @@ impl DrumLayout {
                 EXPERIMENT,
             )?;
         }
-        Ok(DrumWalls { shell, near, far })
+        Ok(())
     }
 }
 
-/// The drum's walls.
-#[derive(Debug, Clone, Copy)]
-pub struct DrumWalls {
-    /// The cylindrical shell.
-    pub shell: WallId,
-    /// The end plate at −y (normal +y).
-    pub near: WallId,
-    /// The end plate at +y (normal −y).
-    pub far: WallId,
-}
-
-impl DrumWalls {
-    /// Turns the shell and both plates together at `omega_rad_s` about +y (the far plate's
-    /// normal is −y, so it turns at −ω about its own).
-    pub fn spin(&self, w: &mut World<'_, Fx>, omega_rad_s: f64) -> Result<(), ExperimentError> {
-        let e = |s| setup_error(EXPERIMENT, s);
-        w.set_wall_spin_rad_s(self.shell, omega_rad_s).map_err(e)?;
-        w.set_wall_spin_rad_s(self.near, omega_rad_s).map_err(e)?;
-        w.set_wall_spin_rad_s(self.far, -omega_rad_s).map_err(e)
-    }
-}
-
-/// Steps `w` until its pods are at rest (kinetic energy below `at_rest_j`, after
-/// [`MIN_FILL_S`]) or [`MAX_SETTLE_S`] has passed, recording frames.
-pub fn settle(
-    w: &mut World<'_, Fx>,
-    at_rest_j: f64,
-    frames: &mut FrameRecorder,
-) -> Result<(), ExperimentError> {
-    let chunk = steps_for(w, CHECK_INTERVAL_S);
-    while w.time_s() < MAX_SETTLE_S {
-        run_steps(w, chunk, EXPERIMENT)?;
-        frames.record(w);
-        if w.time_s() >= MIN_FILL_S && kinetic_energy_j(w) < at_rest_j {
-            break;
-        }
-    }
-    Ok(())
+/// Turns the drum and both end plates together at `omega_rad_s` about +y: the core's drum
+/// rig's [`Drum::spin`], since [`DrumLayout::build`] adds the same walls first, in its order.
+pub fn spin(w: &mut World<'_, Fx>, omega_rad_s: f64) -> Result<(), ExperimentError> {
+    Drum::spin(w, omega_rad_s).map_err(|e| ExperimentError::Study {
+        experiment: EXPERIMENT.name(),
+        reason: e.to_string(),
+    })
 }
 
 /// Runs the pod drum (module notes).
@@ -258,17 +228,27 @@ pub fn run(
     let mut arena = Arena::new(inputs, n, layout.sphere_total);
     let mut w = arena.world(EXPERIMENT)?;
     let mats = add_materials(&mut w, inputs, EXPERIMENT)?;
-    let walls = layout.build(&mut w, inputs, mats)?;
+    layout.build(&mut w, inputs, mats)?;
     let dt_s = set_rayleigh_timestep(&mut w, inputs, EXPERIMENT)?;
     let mut frames = FrameRecorder::new(options.vtk_dir.as_deref());
     frames.record(&w);
-    settle(&mut w, at_rest_energy_j(inputs, n), &mut frames)?;
+    let at_rest_j = at_rest_energy_j(inputs, n);
+    let chunk = steps_for(&w, CHECK_INTERVAL_S);
+    settle(
+        &mut w,
+        chunk,
+        MIN_FILL_S,
+        MAX_SETTLE_S,
+        at_rest_j,
+        &mut frames,
+        EXPERIMENT,
+    )?;
     let settled_angle_deg = bed_angle_deg(&w, 1.0);
     let spin_start_s = w.time_s();
 
     let speed = speed_rpm(inputs);
     let omega = speed * RAD_S_PER_RPM;
-    walls.spin(&mut w, omega)?;
+    spin(&mut w, omega)?;
     let spin_up = steps_for(&w, SPIN_UP_TURN_RAD / omega);
     run_steps(&mut w, spin_up, EXPERIMENT)?;
     frames.record(&w);

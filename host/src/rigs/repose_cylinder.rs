@@ -260,13 +260,16 @@ pub fn run(
     let chunk = steps_for(&w, CHECK_INTERVAL_S);
 
     // 1. Fill and settle.
-    while w.time_s() < repose.lift_start_s {
-        run_steps(&mut w, chunk, EXPERIMENT)?;
-        frames.record(&w);
-        if w.time_s() >= MIN_FILL_S && kinetic_energy_j(&w) < at_rest_j {
-            break;
-        }
-    }
+    let fill_end_s = repose.lift_start_s;
+    settle(
+        &mut w,
+        chunk,
+        MIN_FILL_S,
+        fill_end_s,
+        at_rest_j,
+        &mut frames,
+        EXPERIMENT,
+    )?;
     let lift_start_s = w.time_s();
 
     // 2. Lift until the lower edge clears every sphere.

@@ -480,6 +480,28 @@ pub fn run_steps(
     })
 }
 
+/// Steps `w` in chunks of `chunk` steps, recording a frame after each, until its kinetic
+/// energy is below `at_rest_j` at a time of at least `not_before_s`, or until `until_s`
+/// has passed (s). The fill-and-settle phase of the bulk pod rigs.
+pub fn settle(
+    w: &mut World<'_, Fx>,
+    chunk: u64,
+    not_before_s: f64,
+    until_s: f64,
+    at_rest_j: f64,
+    frames: &mut super::frames::FrameRecorder,
+    experiment: Experiment,
+) -> Result<(), ExperimentError> {
+    while w.time_s() < until_s {
+        run_steps(w, chunk, experiment)?;
+        frames.record(w);
+        if w.time_s() >= not_before_s && kinetic_energy_j(w) < at_rest_j {
+            break;
+        }
+    }
+    Ok(())
+}
+
 /// Steps in `duration_s` at the world's dt (at least one).
 pub fn steps_for(w: &World<'_, Fx>, duration_s: f64) -> u64 {
     steps_in(duration_s, w.timestep_s())
