@@ -301,13 +301,10 @@ fn a_run_cache_gives_the_same_report_and_is_replayed() {
     }
 }
 
-#[test]
-fn one_rig_at_one_condition_cannot_tell_rolling_resistance_from_cohesion() {
-    // Issue 22: LIGGGHTS' rolling data (EPSD μr 0.01 hidden) at one launch speed only. EPSD
-    // rolling resistance, cohesion and drag each explain the one slower mean, so the tool
-    // says it cannot tell them apart and names the rig and condition that would.
-    let dir = tempfile::tempdir().unwrap();
-    let template = dir.path().join("roll-one-speed.toml");
+/// LIGGGHTS' rolling data (EPSD μr 0.01 hidden, `testdata/diagnosis-liggghts`) at one launch
+/// speed only, written into `dir`: the measured study's path.
+fn roll_at_one_speed(dir: &std::path::Path) -> String {
+    let template = dir.join("roll-one-speed.toml");
     let text = std::fs::read_to_string(
         std::path::Path::new(cli_support::REPO_ROOT)
             .join("testdata/diagnosis-liggghts/roll-template.toml"),
@@ -319,8 +316,8 @@ fn one_rig_at_one_condition_cannot_tell_rolling_resistance_from_cohesion() {
         format!("{head}[[diagnosis.experiment.point]]\ncondition = 0.4\nreplicates = 4\n"),
     )
     .unwrap();
-    let m = dir.path().join("m.toml");
-    let m = m.to_str().unwrap();
+    let m = dir.join("m.toml");
+    let m = m.to_str().unwrap().to_owned();
     ok(&arachis(&[
         "synth",
         template.to_str().unwrap(),
@@ -329,8 +326,39 @@ fn one_rig_at_one_condition_cannot_tell_rolling_resistance_from_cohesion() {
         "--seed",
         "1",
         "--out",
-        m,
+        &m,
     ]));
+    m
+}
+
+/// The proposal line of a diagnosis: its rig, and the separation it reaches (SE).
+fn proposal(diag: &str) -> (String, f64) {
+    let line = diag
+        .lines()
+        .find(|l| l.starts_with("to tell"))
+        .unwrap_or_else(|| panic!("no proposal: {diag}"));
+    let rig = line
+        .split(" apart: measure ")
+        .nth(1)
+        .and_then(|rest| rest.split_whitespace().next())
+        .unwrap_or_else(|| panic!("{line}"))
+        .to_owned();
+    let after = line
+        .split(" -> ")
+        .nth(1)
+        .and_then(|rest| rest.split_whitespace().next())
+        .and_then(|x| x.parse().ok())
+        .unwrap_or_else(|| panic!("{line}"));
+    (rig, after)
+}
+
+#[test]
+fn one_rig_at_one_condition_cannot_tell_rolling_resistance_from_cohesion() {
+    // Issue 22: EPSD rolling resistance, cohesion and drag each explain the one slower mean,
+    // so the tool says it cannot tell them apart and names the rig and condition that would.
+    let dir = tempfile::tempdir().unwrap();
+    let m = roll_at_one_speed(dir.path());
+    let m = m.as_str();
     let diag = ok(&arachis(&["diagnose", m]));
     assert!(
         diag.contains("NOT DISTINGUISHABLE: cohesion and epsd_rolling"),
@@ -341,15 +369,70 @@ fn one_rig_at_one_condition_cannot_tell_rolling_resistance_from_cohesion() {
         "no single best candidate may be named: {diag}"
     );
     // The proposal is another launch speed of the roll rig, away from the measured 0.4 m/s.
-    let proposal = diag
+    let line = diag
         .lines()
         .find(|l| l.starts_with("to tell"))
         .unwrap_or_else(|| panic!("no proposal: {diag}"));
-    let speed: f64 = proposal
+    let speed: f64 = line
         .split("measure roll at launch speed, m/s = ")
         .nth(1)
         .and_then(|rest| rest.split_whitespace().next())
         .and_then(|x| x.parse().ok())
-        .unwrap_or_else(|| panic!("{proposal}"));
-    assert!((speed - 0.4).abs() > 0.2, "{proposal}");
+        .unwrap_or_else(|| panic!("{line}"));
+    assert!((speed - 0.4).abs() > 0.2, "{line}");
+}
+
+#[test]
+fn a_rig_not_yet_measured_is_proposed_when_it_separates_better_at_the_stated_sd() {
+    // Issue 22: the same one-speed roll data. A free fall responds to air drag and not at
+    // all to cohesion (no contact), so a fall-time measurement separates the top two,
+    // cohesion and drag, if it is precise enough; how precise is the user's statement.
+    let dir = tempfile::tempdir().unwrap();
+    let m = roll_at_one_speed(dir.path());
+    let m = m.as_str();
+    let plain = ok(&arachis(&["diagnose", m]));
+    let (rig, roll_best) = proposal(&plain);
+    assert_eq!(rig, "roll", "{plain}");
+    // The unmeasured rigs the study can simulate are named, with how to try one.
+    let hint = plain
+        .lines()
+        .find(|l| l.starts_with("rigs not yet measured"))
+        .unwrap_or_else(|| panic!("no hint: {plain}"));
+    assert!(
+        hint.contains("fall (fall time, ms)") && hint.contains("--consider"),
+        "{hint}"
+    );
+    assert!(
+        !hint.contains("roll "),
+        "the measured rig is not offered: {hint}"
+    );
+    // Fall time to 0.05 ms: the fall rig wins, beyond the roll's best separation.
+    let precise = ok(&arachis(&["diagnose", m, "--consider", "fall=0.05"]));
+    let (rig, fall_best) = proposal(&precise);
+    assert_eq!(rig, "fall", "{precise}");
+    assert!(
+        precise.contains("(not measured yet; replicate SD 0.05 assumed, from --consider)"),
+        "{precise}"
+    );
+    assert!(fall_best > roll_best + 1.0, "{fall_best} vs {roll_best}");
+    // A thousand times noisier, the fall no longer competes: the roll's proposal returns
+    // with the same separation.
+    let noisy = ok(&arachis(&["diagnose", m, "--consider", "fall=50"]));
+    assert_eq!(proposal(&noisy), ("roll".to_owned(), roll_best), "{noisy}");
+}
+
+#[test]
+fn considering_a_rig_that_cannot_be_proposed_is_refused_with_the_reason() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = roll_at_one_speed(dir.path());
+    let nothing = dir.path().join("nothing-written");
+    for (consider, named) in [
+        ("rol=0.1", "did you mean 'roll'?"),
+        ("roll=0.1", "measured already"),
+        ("drum=0.7", "does not take 'restitution'"),
+        ("fall=-1", "positive"),
+        ("fall", "RIG=SD"),
+    ] {
+        cli_support::assert_refused(&["diagnose", &m, "--consider", consider], named, &nothing);
+    }
 }

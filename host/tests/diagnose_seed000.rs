@@ -43,6 +43,22 @@ fn seed_000s_pile_is_too_steep_and_its_differences_are_lost_in_the_scatter() {
         text.contains("verdict: no candidate effect is identifiable with these data"),
         "{text}"
     );
+    // One stacking angle cannot say more: the tool names the bench tests of the study's own
+    // pods it could simulate next (issue 22), the pod drum and the poured bulk density.
+    let rigs = text
+        .lines()
+        .find(|l| l.starts_with("rigs not yet measured that this study can simulate:"))
+        .unwrap_or_else(|| panic!("no rigs named in\n{text}"));
+    for rig in [
+        "pod_drum (dynamic angle of repose, deg)",
+        "pod_bulk_density (bulk density, kg/m³)",
+    ] {
+        assert!(rigs.contains(rig), "{rig} not in: {rigs}");
+    }
+    assert!(
+        !rigs.contains("repose ("),
+        "the measured rig is not named: {rigs}"
+    );
     // Six base parameters and three effects at one condition: nine differences, each within
     // Student's 95 % quantile for four placements (3.18 SE).
     assert!(

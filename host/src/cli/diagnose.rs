@@ -12,11 +12,13 @@ use std::path::PathBuf;
 use anyhow::Result;
 
 use crate::diagnose::model::Model;
+use crate::diagnose::prospect;
 use crate::diagnose::residuals::{lack_of_fit, Dataset};
 use crate::diagnose::scatter::{differences, lost_in_scatter, ScatteredDifference, CONFIDENCE};
 use crate::diagnose::score::{rank, Status, FAMILY_ALPHA, IDENTIFIABLE_FRACTION};
 use crate::diagnose::sensitivity::Linearisation;
 use crate::diagnose::separate::propose;
+use crate::rigs::kind::RigOptions;
 use crate::study::Study;
 
 /// Replicates assumed for a proposed extra measurement.
@@ -26,6 +28,12 @@ const EFFECT_COLUMN: usize = 14;
 /// A proposed measurement must raise the separation by this much (standard errors) to be
 /// worth making.
 const MIN_SEPARATION_GAIN: f64 = 0.01;
+
+/// After the rigs a study could still measure, when no effect is identifiable.
+const IDENTIFY_HINT: &str = "a measurement of one adds a signature the calibration may not absorb";
+/// After the rigs a study could still measure, when two effects are indistinguishable.
+const CONSIDER_HINT: &str =
+    "`--consider RIG=SD` (the replicate SD you expect of it) has the search try one";
 
 /// What to do when finite differences are lost in the placements' scatter.
 const MORE_PLACEMENTS: &str =
@@ -40,6 +48,11 @@ pub struct Args {
     /// Skip the search for the measurement that separates the top two effects.
     #[arg(long)]
     pub no_proposal: bool,
+    /// Also search a rig not yet measured, RIG=SD: SD is the replicate SD you expect of its
+    /// measurement, in the unit of its first quantity (e.g. `--consider drum=0.7` for a
+    /// dynamic angle of repose good to 0.7°). Repeatable.
+    #[arg(long, value_name = "RIG=SD", value_parser = crate::diagnose::prospect::parse)]
+    pub consider: Vec<(String, f64)>,
     /// Where the simulations run, and the run cache that keeps them.
     #[command(flatten)]
     pub runs: super::runs_args::RunsArgs,
@@ -110,6 +123,26 @@ pub fn run(args: Args) -> Result<()> {
     )?;
     let current = study.current_values();
     let lin = Linearisation::new(&data, &model, &current)?;
+    // Rigs not yet measured that the proposal may name (checked before any output).
+    let options = RigOptions {
+        mode: study.plan_mode()?,
+        ..RigOptions::default()
+    };
+    let calibrated: Vec<&str> = lin.calibrated.iter().map(|p| p.key).collect();
+    let considered = args
+        .consider
+        .iter()
+        .map(|(rig, sd)| {
+            prospect::prospect(&study, &data.experiments, &calibrated, (rig, *sd), &options)
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let not_considered = prospect::unmeasured(
+        &study,
+        &data.experiments,
+        &considered,
+        &calibrated,
+        &options,
+    );
     let lof = lack_of_fit(&data, &lin.predictions)?;
     let mut s = String::new();
     writeln!(s, "lack of fit at the current calibration:")?;
@@ -215,10 +248,15 @@ pub fn run(args: Args) -> Result<()> {
             s,
             "\nverdict: no missing effect can be claimed at family alpha {FAMILY_ALPHA}"
         )?,
-        None => writeln!(
-            s,
-            "\nverdict: no candidate effect is identifiable with these data; measure more conditions"
-        )?,
+        None => {
+            writeln!(
+                s,
+                "\nverdict: no candidate effect is identifiable with these data; measure more conditions"
+            )?;
+            if let Some(h) = prospect::hint(&not_considered, IDENTIFY_HINT) {
+                writeln!(s, "{h}")?;
+            }
+        }
     }
     let lost = |name: &str| lost_in_scatter(&scattered, name);
     if !r.candidates.is_empty() && r.candidates.iter().all(|c| lost(c.effect.name)) {
@@ -262,15 +300,44 @@ pub fn run(args: Args) -> Result<()> {
         .collect();
     // A proposal only helps when there is something to tell apart: a claimed effect or an
     // indistinguishable pair.
-    if !args.no_proposal
+    let searching = !args.no_proposal
         && tested.len() >= 2
-        && (r.any_claimed() || !r.indistinguishable.is_empty())
-    {
-        let sd = |ei: usize| data.pure_error.get(ei).map(|p| p.sd);
+        && (r.any_claimed() || !r.indistinguishable.is_empty());
+    if !searching && !considered.is_empty() {
+        println!(
+            "note: --consider was not used: it serves the search for the measurement that \
+             separates two candidate effects, and these data leave none to separate"
+        );
+    }
+    if searching {
+        // The data's experiments, then the rigs the user asked to consider, each simulated by
+        // its own rig (the ranking's model knows only the measured ones).
+        let experiments: Vec<_> = data
+            .experiments
+            .iter()
+            .chain(&considered)
+            .cloned()
+            .collect();
+        let extended;
+        let searched = if considered.is_empty() {
+            &model
+        } else {
+            extended = args.runs.attach(
+                args.prediction.apply(Model::new(&study, &experiments)?),
+                &study,
+            )?;
+            &extended
+        };
+        let measured = data.experiments.len();
+        let sd = |ei: usize| match ei.checked_sub(measured) {
+            None => data.pure_error.get(ei).map(|p| p.sd),
+            Some(k) => considered.get(k).and_then(|e| e.noise_sd),
+        };
         let (a, b) = (tested[0], tested[1]);
         if let Some(p) = propose(
             &data,
-            &model,
+            &experiments,
+            searched,
             &lin,
             &current,
             (a.effect, a.estimate),
@@ -278,25 +345,41 @@ pub fn run(args: Args) -> Result<()> {
             sd,
             PROPOSAL_REPLICATES,
         )? {
-            if p.separation_after - p.separation_now < MIN_SEPARATION_GAIN {
+            let stuck = p.separation_after - p.separation_now < MIN_SEPARATION_GAIN;
+            if stuck {
                 println!(
                     "to tell '{}' from '{}' apart: no measurement in the rigs' search ranges \
                      would separate them further (separation {:.2} standard errors)",
                     a.effect.name, b.effect.name, p.separation_now
                 );
             } else {
+                let e = &experiments[p.experiment];
+                let unmeasured = match p.experiment.checked_sub(measured) {
+                    Some(_) => format!(
+                        " (not measured yet; replicate SD {} assumed, from --consider)",
+                        e.noise_sd.unwrap_or(f64::NAN)
+                    ),
+                    None => String::new(),
+                };
                 println!(
-                    "to tell '{}' from '{}' apart: measure {} at {} = {:.4} ({} replicates); \
+                    "to tell '{}' from '{}' apart: measure {} at {} = {:.4} ({} replicates){unmeasured}; \
                  separation {:.2} -> {:.2} standard errors",
                     a.effect.name,
                     b.effect.name,
-                    data.experiments[p.experiment].rig,
-                    data.experiments[p.experiment].condition.1,
+                    e.rig,
+                    e.condition.1,
                     p.condition,
                     PROPOSAL_REPLICATES,
                     p.separation_now,
                     p.separation_after
                 );
+            }
+            // Where the measured rigs leave effects indistinguishable, another rig may do
+            // better than any new condition of theirs.
+            if stuck || !r.indistinguishable.is_empty() {
+                if let Some(h) = prospect::hint(&not_considered, CONSIDER_HINT) {
+                    println!("{h}");
+                }
             }
         }
     }

@@ -9,12 +9,13 @@
 //! study's experiments), [`residuals`] (standardised residuals and lack of fit), [`sensitivity`] (finite-difference
 //! sensitivities), [`scatter`] (which of them stand out of the placements' scatter), [`score`] (the ranking score test), [`fit`] (recalibration with an effect),
 //! [`synth`] (synthetic measurements), [`plot`] (SVG plots), [`separate`] (which measurement
-//! would tell two effects apart).
+//! would tell two effects apart), [`prospect`] (rigs not yet measured, as candidates for it).
 
 pub mod fit;
 pub mod model;
 pub mod params;
 pub mod plot;
+pub mod prospect;
 pub mod residuals;
 pub mod scatter;
 pub mod score;

@@ -14,7 +14,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::model::Model;
 use super::params::{value, ParamInfo};
-use super::residuals::Dataset;
+use super::residuals::{Dataset, Experiment};
 use super::score::column_basis;
 use super::sensitivity::{Difference, Linearisation};
 use crate::calibration::{Condition, ParameterValues};
@@ -52,11 +52,14 @@ fn separation(
     (unmimicked(sa, sb) * theta_a.abs()).min(unmimicked(sb, sa) * theta_b.abs())
 }
 
-/// Best extra measurement to separate effects `a` and `b` (both candidates of `lin`).
+/// Best extra measurement to separate effects `a` and `b` (both candidates of `lin`), among
+/// new conditions of `experiments`: the data's experiments first, in order, then any rigs
+/// not yet measured ([`super::prospect`]); `model` simulates them in that order.
 /// `noise_sd(experiment)` gives the replicate SD of an experiment, `None` to skip it.
 #[allow(clippy::too_many_arguments)]
 pub fn propose(
     data: &Dataset,
+    experiments: &[Experiment],
     model: &Model<'_>,
     lin: &Linearisation,
     p: &ParameterValues,
@@ -89,7 +92,7 @@ pub fn propose(
     // The candidate measurements: every grid point of every experiment that has a search
     // range and a noise SD, with its weight.
     let mut grid: Vec<(usize, f64, Condition, f64)> = Vec::new();
-    for (ei, e) in data.experiments.iter().enumerate() {
+    for (ei, e) in experiments.iter().enumerate() {
         let search = crate::rigs::catalogue::find(&e.rig)
             .and_then(|k| k.condition(&e.condition.0))
             .and_then(|c| c.search);
