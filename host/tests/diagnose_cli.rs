@@ -436,3 +436,66 @@ fn considering_a_rig_that_cannot_be_proposed_is_refused_with_the_reason() {
         cli_support::assert_refused(&["diagnose", &m, "--consider", consider], named, &nothing);
     }
 }
+
+#[test]
+fn with_nothing_identifiable_a_considered_rig_is_proposed_for_the_effect_only_it_reveals() {
+    // Issue 22: a press at one load, drag hidden. The calibrated E absorbs everything the
+    // one overlap shows; a free fall has no contact, so neither e nor E moves it, and air
+    // drag's signature there is wholly outside what the calibration can mimic (100 % left).
+    let dir = tempfile::tempdir().unwrap();
+    let template = dir.path().join("press-one-load.toml");
+    std::fs::write(
+        &template,
+        "[diagnosis]\nname = \"one load\"\n\n[diagnosis.calibration]\nrestitution = 0.5\n\
+         youngs_modulus_pa = 8.43e6\n\n[[diagnosis.experiment]]\nkind = \"press\"\n\
+         noise_sd = 0.1\n\n[[diagnosis.experiment.point]]\ncondition = 0.01\nreplicates = 4\n",
+    )
+    .unwrap();
+    let m = dir.path().join("m.toml");
+    let m = m.to_str().unwrap();
+    ok(&arachis(&[
+        "synth",
+        template.to_str().unwrap(),
+        "--hidden",
+        "drag=0.3",
+        "--seed",
+        "1",
+        "--out",
+        m,
+    ]));
+    let plain = ok(&arachis(&["diagnose", m]));
+    assert!(
+        plain.contains("verdict: no candidate effect is identifiable with these data"),
+        "{plain}"
+    );
+    assert!(
+        !plain.contains("to make"),
+        "searched without --consider: {plain}"
+    );
+    assert!(plain.contains("fall (fall time, ms)"), "{plain}");
+    let asked = ok(&arachis(&["diagnose", m, "--consider", "fall=0.05"]));
+    let lines: Vec<&str> = asked.lines().filter(|l| l.starts_with("to make")).collect();
+    // First the measurement that reveals the most: another load of the press itself.
+    assert!(
+        lines
+            .first()
+            .is_some_and(|l| l.contains("measure press at load")),
+        "{asked}"
+    );
+    let drag = lines
+        .iter()
+        .find(|l| l.starts_with("to make drag ("))
+        .unwrap_or_else(|| panic!("drag not proposed: {asked}"));
+    assert!(
+        drag.contains("identifiable: measure fall at fall height")
+            && drag.contains("(not measured yet; replicate SD 0.05 assumed, from --consider)"),
+        "{drag}"
+    );
+    let left: f64 = drag
+        .split("to make drag (")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|x| x.parse().ok())
+        .unwrap_or_else(|| panic!("{drag}"));
+    assert!(left >= 99.5, "{drag}");
+}

@@ -17,7 +17,7 @@ use crate::diagnose::residuals::{lack_of_fit, Dataset};
 use crate::diagnose::scatter::{differences, lost_in_scatter, ScatteredDifference, CONFIDENCE};
 use crate::diagnose::score::{rank, Status, FAMILY_ALPHA, IDENTIFIABLE_FRACTION};
 use crate::diagnose::sensitivity::Linearisation;
-use crate::diagnose::separate::propose;
+use crate::diagnose::separate::{identify, propose, Search};
 use crate::rigs::kind::RigOptions;
 use crate::study::Study;
 
@@ -30,7 +30,8 @@ const EFFECT_COLUMN: usize = 14;
 const MIN_SEPARATION_GAIN: f64 = 0.01;
 
 /// After the rigs a study could still measure, when no effect is identifiable.
-const IDENTIFY_HINT: &str = "a measurement of one adds a signature the calibration may not absorb";
+const IDENTIFY_HINT: &str = "`--consider RIG=SD` (the replicate SD you expect of it) has \
+     the tool look for the measurement that makes candidate effects identifiable";
 /// After the rigs a study could still measure, when two effects are indistinguishable.
 const CONSIDER_HINT: &str =
     "`--consider RIG=SD` (the replicate SD you expect of it) has the search try one";
@@ -298,52 +299,62 @@ pub fn run(args: Args) -> Result<()> {
         .iter()
         .filter(|c| matches!(c.status, Status::Tested { .. }))
         .collect();
-    // A proposal only helps when there is something to tell apart: a claimed effect or an
-    // indistinguishable pair.
-    let searching = !args.no_proposal
-        && tested.len() >= 2
-        && (r.any_claimed() || !r.indistinguishable.is_empty());
-    if !searching && !considered.is_empty() {
-        println!(
-            "note: --consider was not used: it serves the search for the measurement that \
-             separates two candidate effects, and these data leave none to separate"
-        );
-    }
-    if searching {
-        // The data's experiments, then the rigs the user asked to consider, each simulated by
-        // its own rig (the ranking's model knows only the measured ones).
-        let experiments: Vec<_> = data
-            .experiments
-            .iter()
-            .chain(&considered)
-            .cloned()
-            .collect();
-        let extended;
-        let searched = if considered.is_empty() {
-            &model
-        } else {
-            extended = args.runs.attach(
-                args.prediction.apply(Model::new(&study, &experiments)?),
-                &study,
-            )?;
-            &extended
+    // The data's experiments, then the rigs the user asked to consider, each simulated by
+    // its own rig (the ranking's model knows only the measured ones).
+    let experiments: Vec<_> = data
+        .experiments
+        .iter()
+        .chain(&considered)
+        .cloned()
+        .collect();
+    let measured = data.experiments.len();
+    let extended;
+    let searched = if considered.is_empty() {
+        &model
+    } else {
+        extended = args.runs.attach(
+            args.prediction.apply(Model::new(&study, &experiments)?),
+            &study,
+        )?;
+        &extended
+    };
+    let noise_sd = |ei: usize| match ei.checked_sub(measured) {
+        None => data.pure_error.get(ei).map(|p| p.sd),
+        Some(k) => considered.get(k).and_then(|e| e.noise_sd),
+    };
+    let search = Search {
+        experiments: &experiments,
+        model: searched,
+        noise_sd: &noise_sd,
+        replicates: PROPOSAL_REPLICATES,
+    };
+    // Where the measurement was: " (not measured yet; …)" for a considered rig.
+    let measure = |experiment: usize, condition: f64| {
+        let e = &experiments[experiment];
+        let unmeasured = match experiment.checked_sub(measured) {
+            Some(_) => format!(
+                " (not measured yet; replicate SD {} assumed, from --consider)",
+                e.noise_sd.unwrap_or(f64::NAN)
+            ),
+            None => String::new(),
         };
-        let measured = data.experiments.len();
-        let sd = |ei: usize| match ei.checked_sub(measured) {
-            None => data.pure_error.get(ei).map(|p| p.sd),
-            Some(k) => considered.get(k).and_then(|e| e.noise_sd),
-        };
+        format!(
+            "measure {} at {} = {condition:.4} ({PROPOSAL_REPLICATES} replicates){unmeasured}",
+            e.rig, e.condition.1
+        )
+    };
+    // A separating measurement only helps when there is something to tell apart: a claimed
+    // effect or an indistinguishable pair.
+    let proposing = !args.no_proposal;
+    if proposing && tested.len() >= 2 && (r.any_claimed() || !r.indistinguishable.is_empty()) {
         let (a, b) = (tested[0], tested[1]);
         if let Some(p) = propose(
             &data,
-            &experiments,
-            searched,
+            &search,
             &lin,
             &current,
             (a.effect, a.estimate),
             (b.effect, b.estimate),
-            sd,
-            PROPOSAL_REPLICATES,
         )? {
             let stuck = p.separation_after - p.separation_now < MIN_SEPARATION_GAIN;
             if stuck {
@@ -353,23 +364,11 @@ pub fn run(args: Args) -> Result<()> {
                     a.effect.name, b.effect.name, p.separation_now
                 );
             } else {
-                let e = &experiments[p.experiment];
-                let unmeasured = match p.experiment.checked_sub(measured) {
-                    Some(_) => format!(
-                        " (not measured yet; replicate SD {} assumed, from --consider)",
-                        e.noise_sd.unwrap_or(f64::NAN)
-                    ),
-                    None => String::new(),
-                };
                 println!(
-                    "to tell '{}' from '{}' apart: measure {} at {} = {:.4} ({} replicates){unmeasured}; \
-                 separation {:.2} -> {:.2} standard errors",
+                    "to tell '{}' from '{}' apart: {}; separation {:.2} -> {:.2} standard errors",
                     a.effect.name,
                     b.effect.name,
-                    e.rig,
-                    e.condition.1,
-                    p.condition,
-                    PROPOSAL_REPLICATES,
+                    measure(p.experiment, p.condition),
                     p.separation_now,
                     p.separation_after
                 );
@@ -382,6 +381,38 @@ pub fn run(args: Args) -> Result<()> {
                 }
             }
         }
+    } else if proposing && tested.is_empty() && !considered.is_empty() {
+        // Nothing identifiable: which measurement would make candidates identifiable. Only
+        // when asked for with --consider, since the search simulates every rig's grid of
+        // conditions (minutes per condition for a pile).
+        let found = identify(&data, &search, &lin, &current)?;
+        if found.is_empty() {
+            println!(
+                "no measurement in the searched rigs' ranges would make a candidate effect \
+                 identifiable"
+            );
+        }
+        for (k, i) in found.iter().enumerate() {
+            let named: Vec<String> = i
+                .identifiable
+                .iter()
+                .map(|(e, share)| format!("{} ({:.0} % left)", e.name, 100.0 * share))
+                .collect();
+            println!(
+                "to make {} identifiable: {}",
+                if k == 0 {
+                    format!("the most candidates ({})", named.join(", "))
+                } else {
+                    named.join(", ")
+                },
+                measure(i.experiment, i.condition),
+            );
+        }
+    } else if !considered.is_empty() {
+        println!(
+            "note: --consider was not used: there is no proposal to make (--no-proposal, or \
+             no two candidate effects to separate)"
+        );
     }
     Ok(())
 }

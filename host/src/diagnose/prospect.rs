@@ -1,6 +1,7 @@
-//! Rigs not yet measured, as candidate measurements for [`super::separate::propose`]: when
-//! the data cannot tell two effects apart, the measurement that would may be another bench
-//! test altogether (a drum beside a repose pile, a roll beside a press).
+//! Rigs not yet measured, as candidate measurements for [`super::separate::propose`] and
+//! [`super::separate::identify`]: when the data cannot tell two effects apart, or cannot
+//! show an effect at all, the measurement that would may be another bench test altogether
+//! (a drum beside a repose pile, a fall beside a press).
 //!
 //! A measured experiment brings its own pure error; an unmeasured one has none, so the user
 //! states the replicate SD they expect of it (`arachis diagnose --consider RIG=SD`, in the

@@ -8,6 +8,11 @@
 //! of a design is the smaller of the two; the proposal is the (K, x) that raises it most.
 //! Linearised, like the ranking; θ_a, θ_b are the ranking's one-step estimates (or one
 //! finite-difference step when the estimate is not positive).
+//!
+//! When no candidate is identifiable at all (the calibration absorbs every signature, as a
+//! single stacking angle does), [`identify`] looks for the measurement that leaves the most
+//! candidates identifiable: with the proposed row added, the share of s̃ outside the span of
+//! J̃ reaches [`IDENTIFIABLE_FRACTION`], the ranking's own threshold.
 
 use anyhow::Result;
 use nalgebra::{DMatrix, DVector};
@@ -15,13 +20,38 @@ use nalgebra::{DMatrix, DVector};
 use super::model::Model;
 use super::params::{value, ParamInfo};
 use super::residuals::{Dataset, Experiment};
-use super::score::column_basis;
+use super::score::{column_basis, IDENTIFIABLE_FRACTION};
 use super::sensitivity::{Difference, Linearisation};
 use crate::calibration::{Condition, ParameterValues};
 
 /// Candidate conditions per experiment (log-spaced over its rig's search range, the
 /// practical conditions, narrower than what the simulation accepts).
 const GRID_POINTS: usize = 8;
+
+/// Where a new measurement may be taken.
+pub struct Search<'s, 'm> {
+    /// The experiments: the data's first, in order, then any rigs not yet measured
+    /// ([`super::prospect`]).
+    pub experiments: &'s [Experiment],
+    /// Simulates `experiments`, in that order.
+    pub model: &'s Model<'m>,
+    /// The replicate SD of each experiment; `None` leaves it out of the search.
+    pub noise_sd: &'s dyn Fn(usize) -> Option<f64>,
+    /// Replicates a proposed measurement would have.
+    pub replicates: usize,
+}
+
+/// A candidate measurement and the weighted row it would add to the sensitivities.
+struct Row {
+    /// Experiment index in [`Search::experiments`].
+    experiment: usize,
+    /// Condition value.
+    condition: f64,
+    /// The row of J̃ (calibrated parameters, in [`Linearisation::calibrated`] order).
+    calibrated: Vec<f64>,
+    /// The row of each effect asked for, in that order.
+    effects: Vec<f64>,
+}
 
 /// A proposed measurement.
 #[derive(Clone, Debug)]
@@ -52,67 +82,35 @@ fn separation(
     (unmimicked(sa, sb) * theta_a.abs()).min(unmimicked(sb, sa) * theta_b.abs())
 }
 
-/// Best extra measurement to separate effects `a` and `b` (both candidates of `lin`), among
-/// new conditions of `experiments`: the data's experiments first, in order, then any rigs
-/// not yet measured ([`super::prospect`]); `model` simulates them in that order.
-/// `noise_sd(experiment)` gives the replicate SD of an experiment, `None` to skip it.
-#[allow(clippy::too_many_arguments)]
-pub fn propose(
-    data: &Dataset,
-    experiments: &[Experiment],
-    model: &Model<'_>,
+/// The row every grid point of every searchable experiment would add (log-spaced over its
+/// rig's search range), for the calibrated parameters and `effects`: per grid point the
+/// prediction at `p`, then the finite differences of [`Difference::at`], as in the study's
+/// own sensitivities, all simulated in one batch.
+fn rows(
+    search: &Search<'_, '_>,
     lin: &Linearisation,
     p: &ParameterValues,
-    a: (&'static ParamInfo, f64),
-    b: (&'static ParamInfo, f64),
-    noise_sd: impl Fn(usize) -> Option<f64>,
-    replicates: usize,
-) -> Result<Option<Proposal>> {
-    let w: Vec<f64> = data.obs.iter().map(|o| 1.0 / o.se_mean).collect();
-    let col = |k: usize| -> usize {
-        lin.candidates
-            .iter()
-            .position(|c| c.name == [a.0.name, b.0.name][k])
-            .unwrap_or(usize::MAX)
-    };
-    let (ia, ib) = (col(0), col(1));
-    if ia == usize::MAX || ib == usize::MAX {
-        return Ok(None);
-    }
-    // The weighted sensitivities, with a row per bench prior (as in the score test).
-    let jt = lin.weighted_calibrated(&w);
-    let rows = jt.nrows();
-    let (sa, sb) = (
-        lin.weighted_candidate(ia, &w),
-        lin.weighted_candidate(ib, &w),
-    );
-    let theta_a = if a.1 > 0.0 { a.1 } else { a.0.fd_step };
-    let theta_b = if b.1 > 0.0 { b.1 } else { b.0.fd_step };
-    let now = separation(&jt, &sa, &sb, theta_a, theta_b);
-    // The candidate measurements: every grid point of every experiment that has a search
-    // range and a noise SD, with its weight.
+    effects: &[&'static ParamInfo],
+) -> Result<Vec<Row>> {
     let mut grid: Vec<(usize, f64, Condition, f64)> = Vec::new();
-    for (ei, e) in experiments.iter().enumerate() {
-        let search = crate::rigs::catalogue::find(&e.rig)
+    for (ei, e) in search.experiments.iter().enumerate() {
+        let range = crate::rigs::catalogue::find(&e.rig)
             .and_then(|k| k.condition(&e.condition.0))
             .and_then(|c| c.search);
-        let (Some((lo, hi)), Some(sd)) = (search, noise_sd(ei)) else {
+        let (Some((lo, hi)), Some(sd)) = (range, (search.noise_sd)(ei)) else {
             continue;
         };
-        let wx = (replicates as f64).sqrt() / sd;
+        let wx = (search.replicates as f64).sqrt() / sd;
         for g in 0..GRID_POINTS {
             let x = lo * (hi / lo).powf(g as f64 / (GRID_POINTS - 1) as f64);
             grid.push((ei, x, Condition::from([(e.condition.0.clone(), x)]), wx));
         }
     }
-    // Every simulation of every candidate, asked for in one batch: per candidate the
-    // prediction at p, then the steps of each calibrated parameter and of a and b (the
-    // finite differences of [`Difference::at`], as in the study's own sensitivities).
     let stepped: Vec<(&ParamInfo, Difference)> = lin
         .calibrated
         .iter()
+        .chain(effects)
         .copied()
-        .chain([a.0, b.0])
         .map(|info| Ok((info, Difference::at(info, value(info, p))?)))
         .collect::<Result<_>>()?;
     let mut runs = Vec::new();
@@ -127,34 +125,176 @@ pub fn propose(
             );
         }
     }
-    let y = model.simulate_all(&runs)?;
-    let per_candidate = 1 + stepped.iter().map(|(_, d)| d.shifts().len()).sum::<usize>();
+    let y = search.model.simulate_all(&runs)?;
+    let per_point = 1 + stepped.iter().map(|(_, d)| d.shifts().len()).sum::<usize>();
+    Ok(grid
+        .iter()
+        .zip(y.chunks(per_point))
+        .map(|((ei, x, _, wx), y)| {
+            let mut row = Vec::with_capacity(stepped.len());
+            let mut k = 1;
+            for (info, difference) in &stepped {
+                let m = difference.shifts().len();
+                row.push(difference.derivative(info.fd_step, &y[k..k + m], y[0]) * wx);
+                k += m;
+            }
+            let effects = row.split_off(lin.calibrated.len());
+            Row {
+                experiment: *ei,
+                condition: *x,
+                calibrated: row,
+                effects,
+            }
+        })
+        .collect())
+}
+
+/// `m` with `row` appended.
+fn with_row(m: &DMatrix<f64>, row: &[f64]) -> DMatrix<f64> {
+    let n = m.nrows();
+    let mut x = m.clone().insert_row(n, 0.0);
+    for (k, v) in row.iter().enumerate() {
+        x[(n, k)] = *v;
+    }
+    x
+}
+
+/// Best extra measurement to separate effects `a` and `b` (both candidates of `lin`, with
+/// their estimates), among new conditions of `search`'s experiments.
+pub fn propose(
+    data: &Dataset,
+    search: &Search<'_, '_>,
+    lin: &Linearisation,
+    p: &ParameterValues,
+    a: (&'static ParamInfo, f64),
+    b: (&'static ParamInfo, f64),
+) -> Result<Option<Proposal>> {
+    let w: Vec<f64> = data.obs.iter().map(|o| 1.0 / o.se_mean).collect();
+    let col = |info: &ParamInfo| lin.candidates.iter().position(|c| c.name == info.name);
+    let (Some(ia), Some(ib)) = (col(a.0), col(b.0)) else {
+        return Ok(None);
+    };
+    // The weighted sensitivities, with a row per bench prior (as in the score test).
+    let jt = lin.weighted_calibrated(&w);
+    let (sa, sb) = (
+        lin.weighted_candidate(ia, &w),
+        lin.weighted_candidate(ib, &w),
+    );
+    let theta_a = if a.1 > 0.0 { a.1 } else { a.0.fd_step };
+    let theta_b = if b.1 > 0.0 { b.1 } else { b.0.fd_step };
+    let now = separation(&jt, &sa, &sb, theta_a, theta_b);
     let mut best: Option<Proposal> = None;
-    for ((ei, x, _, wx), y) in grid.iter().zip(y.chunks(per_candidate)) {
-        // This candidate measurement's row of each sensitivity, weighted.
-        let mut extra = Vec::with_capacity(stepped.len());
-        let mut k = 1;
-        for (info, difference) in &stepped {
-            let m = difference.shifts().len();
-            extra.push(difference.derivative(info.fd_step, &y[k..k + m], y[0]) * wx);
-            k += m;
-        }
-        let c = lin.calibrated.len();
-        let mut jx = jt.clone().insert_row(rows, 0.0);
-        for (k, row) in extra[..c].iter().enumerate() {
-            jx[(rows, k)] = *row;
-        }
-        let sax = sa.clone().insert_row(rows, extra[c]);
-        let sbx = sb.clone().insert_row(rows, extra[c + 1]);
+    for row in rows(search, lin, p, &[a.0, b.0])? {
+        let n = jt.nrows();
+        let jx = with_row(&jt, &row.calibrated);
+        let sax = sa.clone().insert_row(n, row.effects[0]);
+        let sbx = sb.clone().insert_row(n, row.effects[1]);
         let s = separation(&jx, &sax, &sbx, theta_a, theta_b);
         if best.as_ref().is_none_or(|bp| s > bp.separation_after) {
             best = Some(Proposal {
-                experiment: *ei,
-                condition: *x,
+                experiment: row.experiment,
+                condition: row.condition,
                 separation_after: s,
                 separation_now: now,
             });
         }
     }
     Ok(best)
+}
+
+/// A measurement that would make candidate effects identifiable.
+#[derive(Clone, Debug)]
+pub struct Identification {
+    /// The experiment (index in [`Search::experiments`]).
+    pub experiment: usize,
+    /// Condition.
+    pub condition: f64,
+    /// The candidates it would make identifiable, each with the share of its signature the
+    /// calibration could no longer absorb.
+    pub identifiable: Vec<(&'static ParamInfo, f64)>,
+}
+
+/// The share of `s` outside the span of `j`'s columns (0 for a zero `s`).
+fn share_left(j: &DMatrix<f64>, s: &DVector<f64>) -> f64 {
+    let full = s.norm();
+    if full == 0.0 {
+        return 0.0;
+    }
+    let q = column_basis(j);
+    (s - &q * (q.transpose() * s)).norm() / full
+}
+
+/// Measurements that would make candidate effects of `lin` identifiable: first the new
+/// condition of `search`'s experiments after which the most are (ties: the larger total
+/// share left), then, for each candidate that one leaves unidentifiable, the condition that
+/// leaves the largest share of its signature, where that reaches the threshold. Empty when no
+/// measurement would make any candidate identifiable.
+pub fn identify(
+    data: &Dataset,
+    search: &Search<'_, '_>,
+    lin: &Linearisation,
+    p: &ParameterValues,
+) -> Result<Vec<Identification>> {
+    let w: Vec<f64> = data.obs.iter().map(|o| 1.0 / o.se_mean).collect();
+    let jt = lin.weighted_calibrated(&w);
+    let n = jt.nrows();
+    // Per grid point, the share left of each candidate's signature.
+    let shares: Vec<(Row, Vec<f64>)> = rows(search, lin, p, &lin.candidates)?
+        .into_iter()
+        .map(|row| {
+            let jx = with_row(&jt, &row.calibrated);
+            let each = (0..lin.candidates.len())
+                .map(|k| {
+                    let s = lin.weighted_candidate(k, &w).insert_row(n, row.effects[k]);
+                    share_left(&jx, &s)
+                })
+                .collect();
+            (row, each)
+        })
+        .collect();
+    let at = |(row, each): &(Row, Vec<f64>), only: Option<usize>| Identification {
+        experiment: row.experiment,
+        condition: row.condition,
+        identifiable: lin
+            .candidates
+            .iter()
+            .zip(each)
+            .enumerate()
+            .filter(|(k, (_, share))| {
+                **share >= IDENTIFIABLE_FRACTION && only.is_none_or(|o| o == *k)
+            })
+            .map(|(_, (info, share))| (*info, *share))
+            .collect(),
+    };
+    let score = |each: &[f64]| {
+        let ok: Vec<f64> = each
+            .iter()
+            .copied()
+            .filter(|s| *s >= IDENTIFIABLE_FRACTION)
+            .collect();
+        (ok.len(), ok.iter().sum::<f64>())
+    };
+    let Some(best) = shares.iter().max_by(|a, b| {
+        let (sa, sb) = (score(&a.1), score(&b.1));
+        sa.0.cmp(&sb.0).then(sa.1.total_cmp(&sb.1))
+    }) else {
+        return Ok(Vec::new());
+    };
+    if score(&best.1).0 == 0 {
+        return Ok(Vec::new());
+    }
+    let mut found = vec![at(best, None)];
+    for k in 0..lin.candidates.len() {
+        if best.1[k] >= IDENTIFIABLE_FRACTION {
+            continue;
+        }
+        if let Some(own) = shares
+            .iter()
+            .filter(|(_, each)| each[k] >= IDENTIFIABLE_FRACTION)
+            .max_by(|a, b| a.1[k].total_cmp(&b.1[k]))
+        {
+            found.push(at(own, Some(k)));
+        }
+    }
+    Ok(found)
 }
