@@ -81,8 +81,10 @@ pub struct PredictionArgs {
 }
 
 impl PredictionArgs {
-    /// `model` with these replicates.
+    /// `model` with these replicates, and a progress bar over its simulations on a terminal.
     pub fn apply<'a>(&self, model: Model<'a>) -> Model<'a> {
-        model.with_replicates(self.replicates)
+        model
+            .with_replicates(self.replicates)
+            .with_progress(crate::calibration::Progress::new(false))
     }
 }

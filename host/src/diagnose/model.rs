@@ -20,7 +20,9 @@ use super::residuals::Experiment;
 use rayon::prelude::*;
 
 use crate::calibration::rig::response;
-use crate::calibration::{BatchRun, Condition, Executor, ParameterValues, Rig, RunRequest};
+use crate::calibration::{
+    BatchRun, Condition, Executor, ParameterValues, Progress, Rig, RunRequest,
+};
 use crate::rigs::kind::RigOptions;
 use crate::study::Study;
 
@@ -47,6 +49,8 @@ pub struct Model<'a> {
     replicates: u32,
     /// Where simulations run when not on this machine's threads alone.
     executor: Option<Executor>,
+    /// The progress bar of simulations run here (an executor draws its own).
+    progress: Progress,
     /// Every parameter the rigs declare.
     pub catalogue: Catalogue,
 }
@@ -71,6 +75,7 @@ impl<'a> Model<'a> {
                 .collect(),
             replicates: DEFAULT_RANDOM_REPLICATES,
             executor: None,
+            progress: Progress::hidden(),
             quantities: experiments.iter().map(|e| e.quantity.clone()).collect(),
             catalogue: Catalogue::of_rigs(experiments.iter().map(|e| e.rig.as_str())),
         })
@@ -79,6 +84,13 @@ impl<'a> Model<'a> {
     /// This model with its simulations run through `executor` (module docs).
     pub fn with_executor(mut self, executor: Executor) -> Self {
         self.executor = Some(executor);
+        self
+    }
+
+    /// This model with a progress bar over the simulations it runs on this machine (drawn on
+    /// a terminal only; a batch through an executor has the executor's bar).
+    pub fn with_progress(mut self, progress: Progress) -> Self {
+        self.progress = progress;
         self
     }
 
@@ -131,13 +143,20 @@ impl<'a> Model<'a> {
             .flat_map(|(k, (e, _, _))| (0..self.replicates_of(*e)).map(move |rep| (k, rep)))
             .collect();
         let values: Vec<f64> = match &self.executor {
-            None => each
-                .par_iter()
-                .map(|&(k, rep)| {
-                    let (e, c, p) = &runs[k];
-                    self.simulate_here(*e, c, p, rep)
-                })
-                .collect::<Result<_>>()?,
+            None => {
+                let bar = self.progress.stage("diagnosis", each.len(), 0);
+                let values = each
+                    .par_iter()
+                    .map(|&(k, rep)| {
+                        let (e, c, p) = &runs[k];
+                        let v = self.simulate_here(*e, c, p, rep);
+                        bar.inc(1);
+                        v
+                    })
+                    .collect::<Result<_>>()?;
+                bar.finish_and_clear();
+                values
+            }
             Some(executor) => {
                 let batch: Vec<BatchRun<'_>> = each
                     .iter()
