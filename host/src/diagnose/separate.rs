@@ -1,4 +1,5 @@
-//! Which experiment and condition would tell two candidate effects apart.
+//! Which experiment and condition would tell two candidate effects apart, or make them
+//! identifiable at all.
 //!
 //! For a proposed extra measurement at condition x of an experiment K (with `replicates`
 //! replicates and the experiment's noise SD), the augmented design has standardised
@@ -56,7 +57,8 @@ struct Row {
 /// A proposed measurement.
 #[derive(Clone, Debug)]
 pub struct Proposal {
-    /// The experiment (index in the data) to measure again.
+    /// The experiment to measure (index in [`Search::experiments`]: a measured one again, or
+    /// a rig not yet measured).
     pub experiment: usize,
     /// Condition.
     pub condition: f64,
