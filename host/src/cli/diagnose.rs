@@ -13,12 +13,12 @@ use anyhow::Result;
 
 use crate::diagnose::model::Model;
 use crate::diagnose::prospect;
-use crate::diagnose::residuals::{lack_of_fit, Dataset};
+use crate::diagnose::residuals::{lack_of_fit, Dataset, Experiment};
 use crate::diagnose::scatter::{differences, lost_in_scatter, ScatteredDifference, CONFIDENCE};
-use crate::diagnose::score::{rank, Status, FAMILY_ALPHA, IDENTIFIABLE_FRACTION};
+use crate::diagnose::score::{rank, Ranking, Status, FAMILY_ALPHA, IDENTIFIABLE_FRACTION};
 use crate::diagnose::sensitivity::Linearisation;
 use crate::diagnose::separate::{identify, propose, Search};
-use crate::rigs::kind::RigOptions;
+use crate::rigs::kind::{RigKind, RigOptions};
 use crate::study::Study;
 
 /// Replicates assumed for a proposed extra measurement.
@@ -294,6 +294,38 @@ pub fn run(args: Args) -> Result<()> {
         }
     }
     print!("{s}");
+    write_proposals(
+        &args,
+        &study,
+        (&data, &model, &lin),
+        &r,
+        &Prospects {
+            considered,
+            not_considered,
+        },
+    )
+}
+
+/// The rigs not yet measured: those `--consider` named, and the others the study could
+/// measure.
+struct Prospects {
+    /// The rigs `--consider` named, as experiments with the stated SD.
+    considered: Vec<Experiment>,
+    /// Rigs the study could measure that were neither measured nor named.
+    not_considered: Vec<&'static RigKind>,
+}
+
+/// The proposed measurement: the one that separates the top two candidates, or, when none
+/// is identifiable and `--consider` asks, those that would make candidates identifiable.
+fn write_proposals(
+    args: &Args,
+    study: &Study,
+    (data, model, lin): (&Dataset, &Model<'_>, &Linearisation),
+    r: &Ranking,
+    prospects: &Prospects,
+) -> Result<()> {
+    let (considered, not_considered) = (&prospects.considered, &prospects.not_considered);
+    let current = study.current_values();
     let tested: Vec<_> = r
         .candidates
         .iter()
@@ -301,20 +333,15 @@ pub fn run(args: Args) -> Result<()> {
         .collect();
     // The data's experiments, then the rigs the user asked to consider, each simulated by
     // its own rig (the ranking's model knows only the measured ones).
-    let experiments: Vec<_> = data
-        .experiments
-        .iter()
-        .chain(&considered)
-        .cloned()
-        .collect();
+    let experiments: Vec<_> = data.experiments.iter().chain(considered).cloned().collect();
     let measured = data.experiments.len();
     let extended;
     let searched = if considered.is_empty() {
-        &model
+        model
     } else {
         extended = args.runs.attach(
-            args.prediction.apply(Model::new(&study, &experiments)?),
-            &study,
+            args.prediction.apply(Model::new(study, &experiments)?),
+            study,
         )?;
         &extended
     };
@@ -349,9 +376,9 @@ pub fn run(args: Args) -> Result<()> {
     if proposing && tested.len() >= 2 && (r.any_claimed() || !r.indistinguishable.is_empty()) {
         let (a, b) = (tested[0], tested[1]);
         if let Some(p) = propose(
-            &data,
+            data,
             &search,
-            &lin,
+            lin,
             &current,
             (a.effect, a.estimate),
             (b.effect, b.estimate),
@@ -376,7 +403,7 @@ pub fn run(args: Args) -> Result<()> {
             // Where the measured rigs leave effects indistinguishable, another rig may do
             // better than any new condition of theirs.
             if stuck || !r.indistinguishable.is_empty() {
-                if let Some(h) = prospect::hint(&not_considered, CONSIDER_HINT) {
+                if let Some(h) = prospect::hint(not_considered, CONSIDER_HINT) {
                     println!("{h}");
                 }
             }
@@ -385,7 +412,7 @@ pub fn run(args: Args) -> Result<()> {
         // Nothing identifiable: which measurement would make candidates identifiable. Only
         // when asked for with --consider, since the search simulates every rig's grid of
         // conditions (minutes per condition for a pile).
-        let found = identify(&data, &search, &lin, &current)?;
+        let found = identify(data, &search, lin, &current)?;
         if found.is_empty() {
             println!(
                 "no measurement in the searched rigs' ranges would make a candidate effect \
