@@ -11,6 +11,7 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 
+use crate::calibration::ParameterValues;
 use crate::diagnose::model::Model;
 use crate::diagnose::prospect;
 use crate::diagnose::residuals::{lack_of_fit, Dataset, Experiment};
@@ -297,7 +298,7 @@ pub fn run(args: Args) -> Result<()> {
     write_proposals(
         &args,
         &study,
-        (&data, &model, &lin),
+        (&data, &model, &lin, &current),
         &r,
         &Prospects {
             considered,
@@ -320,12 +321,11 @@ struct Prospects {
 fn write_proposals(
     args: &Args,
     study: &Study,
-    (data, model, lin): (&Dataset, &Model<'_>, &Linearisation),
+    (data, model, lin, current): (&Dataset, &Model<'_>, &Linearisation, &ParameterValues),
     r: &Ranking,
     prospects: &Prospects,
 ) -> Result<()> {
     let (considered, not_considered) = (&prospects.considered, &prospects.not_considered);
-    let current = study.current_values();
     let tested: Vec<_> = r
         .candidates
         .iter()
@@ -379,7 +379,7 @@ fn write_proposals(
             data,
             &search,
             lin,
-            &current,
+            current,
             (a.effect, a.estimate),
             (b.effect, b.estimate),
         )? {
@@ -412,7 +412,7 @@ fn write_proposals(
         // Nothing identifiable: which measurement would make candidates identifiable. Only
         // when asked for with --consider, since the search simulates every rig's grid of
         // conditions (minutes per condition for a pile).
-        let found = identify(data, &search, lin, &current)?;
+        let found = identify(data, &search, lin, current)?;
         if found.is_empty() {
             println!(
                 "no measurement in the searched rigs' ranges would make a candidate effect \

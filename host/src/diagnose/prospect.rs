@@ -43,11 +43,6 @@ fn searched(kind: &RigKind) -> Option<&'static crate::rigs::kind::ConditionKey> 
     kind.conditions.iter().find(|c| c.search.is_some())
 }
 
-/// Whether `kind` is a rig `study` can build.
-fn buildable(study: &Study, kind: &RigKind, options: &RigOptions) -> bool {
-    study.rig(kind.name, options).is_ok()
-}
-
 /// The first of `calibrated` (parameter keys) that `kind` does not take, if any: its
 /// prediction would ignore that parameter, so its sensitivities would mean nothing. A rig
 /// that declares no parameters takes the study's own factors.
@@ -108,8 +103,8 @@ pub fn prospect(
     })
 }
 
-/// Rigs `study` can build with a searchable condition, taking every `calibrated` parameter,
-/// that are neither measured nor in `considered`: what `--consider` could add.
+/// Rigs that [`prospect`] accepts and that are not in `considered`: what `--consider` could
+/// add.
 pub fn unmeasured(
     study: &Study,
     measured: &[Experiment],
@@ -117,12 +112,13 @@ pub fn unmeasured(
     calibrated: &[&str],
     options: &RigOptions,
 ) -> Vec<&'static RigKind> {
+    // The rules are `prospect`'s own; the SD plays no part in them.
+    let any_sd = 1.0;
     catalogue::RIGS
         .iter()
         .copied()
-        .filter(|k| searched(k).is_some() && missing(k, calibrated).is_none())
-        .filter(|k| measured.iter().chain(considered).all(|e| e.rig != k.name))
-        .filter(|k| buildable(study, k, options))
+        .filter(|k| considered.iter().all(|e| e.rig != k.name))
+        .filter(|k| prospect(study, measured, calibrated, (k.name, any_sd), options).is_ok())
         .collect()
 }
 

@@ -78,8 +78,7 @@ fn separation(
     let unmimicked = |s: &DVector<f64>, other: &DVector<f64>| {
         let mut m = jt.clone().insert_column(jt.ncols(), 0.0);
         m.set_column(jt.ncols(), other);
-        let q = column_basis(&m);
-        (s - &q * (q.transpose() * s)).norm()
+        off_span(&column_basis(&m), s)
     };
     (unmimicked(sa, sb) * theta_a.abs()).min(unmimicked(sb, sa) * theta_b.abs())
 }
@@ -216,14 +215,18 @@ pub struct Identification {
     pub identifiable: Vec<(&'static ParamInfo, f64)>,
 }
 
-/// The share of `s` outside the span of `j`'s columns (0 for a zero `s`).
-fn share_left(j: &DMatrix<f64>, s: &DVector<f64>) -> f64 {
+/// The share of `s` outside the span of the orthonormal columns `basis` (0 for a zero `s`).
+fn share_left(basis: &DMatrix<f64>, s: &DVector<f64>) -> f64 {
     let full = s.norm();
     if full == 0.0 {
         return 0.0;
     }
-    let q = column_basis(j);
-    (s - &q * (q.transpose() * s)).norm() / full
+    off_span(basis, s) / full
+}
+
+/// ‖s − Q·Qᵀ·s‖: the length of what the orthonormal columns `q` cannot mimic of `s`.
+fn off_span(q: &DMatrix<f64>, s: &DVector<f64>) -> f64 {
+    (s - q * (q.transpose() * s)).norm()
 }
 
 /// Measurements that would make candidate effects of `lin` identifiable: first the new
@@ -244,11 +247,12 @@ pub fn identify(
     let shares: Vec<(Row, Vec<f64>)> = rows(search, lin, p, &lin.candidates)?
         .into_iter()
         .map(|row| {
-            let jx = with_row(&jt, &row.calibrated);
+            // One basis per grid point, shared by every candidate.
+            let basis = column_basis(&with_row(&jt, &row.calibrated));
             let each = (0..lin.candidates.len())
                 .map(|k| {
                     let s = lin.weighted_candidate(k, &w).insert_row(n, row.effects[k]);
-                    share_left(&jx, &s)
+                    share_left(&basis, &s)
                 })
                 .collect();
             (row, each)
