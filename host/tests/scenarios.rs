@@ -72,6 +72,7 @@ mod plant_variety;
 mod pod_bulk_density;
 mod pod_drum;
 mod pod_effects;
+mod pod_hopper;
 mod pour_cli;
 mod pulloff_cli;
 mod repeatable_outputs;

@@ -7,7 +7,7 @@
 //! ```
 //!
 //! Experiments: the pod rigs `repose`, `plate_drop`, `incline_slide`, `rolling`,
-//! `compression`, `pod_bulk_density`, `pod_drum` (`crate::rigs`). `--set KEY=VALUE` overrides a registry parameter (SI, e.g.
+//! `compression`, `pod_bulk_density`, `pod_drum`, `pod_hopper` (`crate::rigs`). `--set KEY=VALUE` overrides a registry parameter (SI, e.g.
 //! `pod.shear_modulus_pa=3.04e6`); parameters not set take the study's held values. The
 //! study and every `--set` are checked before anything is simulated. Prints the observable
 //! (with `--json`: the whole [`crate::rigs::pod_world::Observation`] plus the run's spec hash
@@ -46,7 +46,7 @@ pub struct RunChoice {
 #[derive(Debug, clap::Args)]
 pub struct RunSelection {
     /// The experiment: repose, plate_drop, incline_slide, rolling, compression,
-    /// pod_bulk_density or pod_drum.
+    /// pod_bulk_density, pod_drum or pod_hopper.
     pub experiment: String,
     /// The study file (TOML).
     #[arg(long, value_name = "STUDY.toml")]

@@ -21,6 +21,7 @@ pub const RIGS: &[&RigKind] = &[
     &super::bulk_density::KIND,
     &super::pod_bulk_density::KIND,
     &super::pod_drum::KIND,
+    &super::pod_hopper::KIND,
     &super::rebound::KIND,
     &super::press::KIND,
     &super::fall::KIND,
@@ -46,6 +47,7 @@ pub fn pod_test(experiment: Experiment) -> PodTest {
         Experiment::Compression => super::compression::TEST,
         Experiment::PodBulkDensity => super::pod_bulk_density::TEST,
         Experiment::PodDrum => super::pod_drum::TEST,
+        Experiment::PodHopper => super::pod_hopper::TEST,
         Experiment::PlateDrop => super::pod_bench::PLATE_DROP_TEST,
         Experiment::Rolling => super::pod_bench::ROLLING_TEST,
     }

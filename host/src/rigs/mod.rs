@@ -15,6 +15,7 @@
 //! | `bulk_density` | [`bulk_density`] | bulk density of pod spheres poured from a drop height |
 //! | `pod_bulk_density` | [`pod_bulk_density`] | bulk density of the study's pods poured from a drop height |
 //! | `pod_drum` | [`pod_drum`] | dynamic angle of repose of the study's pods in a rotating drum |
+//! | `pod_hopper` | [`pod_hopper`] | mass flow rate of the study's pods out of a silo through an orifice |
 //! | `drum` | [`drum`] | dynamic angle of repose of pod spheres in a rotating drum |
 //! | `rebound`, `press`, `fall`, `unload`, `roll` | [`rebound`], [`press`], [`fall`], [`unload`], [`roll`] | one pod sphere: restitution, overlap, fall time, rolling speed |
 //!
@@ -39,6 +40,7 @@ pub mod parameter;
 pub mod pod_bench;
 pub mod pod_bulk_density;
 pub mod pod_drum;
+pub mod pod_hopper;
 pub mod pod_world;
 pub mod press;
 pub mod pull_off;

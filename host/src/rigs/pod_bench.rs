@@ -292,6 +292,12 @@ fn responses(observation: &Observation) -> Responses {
         ObservationDetails::PodBulkDensity(d) => {
             out.insert(super::pod_bulk_density::BED_LEVEL.into(), d.level_mm);
         }
+        ObservationDetails::PodHopper(d) => {
+            out.insert(
+                super::pod_hopper::DISCHARGED_FRACTION.into(),
+                d.discharged_fraction,
+            );
+        }
         ObservationDetails::Repose(_) | ObservationDetails::PodDrum(_) => {}
     }
     out
@@ -311,6 +317,7 @@ impl Rig for PodBenchRig<'_> {
             Experiment::Rolling => "rolling on an incline, seed 000 §2.6.3",
             Experiment::PodBulkDensity => "poured bulk density",
             Experiment::PodDrum => "rotating drum",
+            Experiment::PodHopper => "discharge through an orifice",
         };
         format!("Arachis DEM virtual bench experiment (fixed-point core; {what})")
     }

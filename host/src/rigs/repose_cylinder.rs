@@ -179,28 +179,7 @@ impl Layout {
         let top_mm = z0 + (layers as f64 - 1.0) * cell + bound;
         let cylinder_length_mm =
             top_mm.max(repose.cylinder_height_mm * scale) + CYLINDER_HEADROOM_MM;
-        let mut particles = Vec::with_capacity(n);
-        let mut classes_left = classes.iter();
-        'layers: for k in 0..layers {
-            let turn = 2.0 * PI * unit_uniform(&mut rng);
-            let (s, c) = turn.sin_cos();
-            for p in &layer {
-                let Some(&class) = classes_left.next() else {
-                    break 'layers;
-                };
-                let position_mm = [
-                    c * p[0] - s * p[1],
-                    s * p[0] + c * p[1],
-                    z0 + k as f64 * cell,
-                ];
-                let orientation = random_quaternion(&mut rng);
-                particles.push(Placed {
-                    class,
-                    position_mm,
-                    orientation,
-                });
-            }
-        }
+        let particles = stack_layers(&layer, z0, cell, classes, &mut rng);
         Ok(Layout {
             diameter_mm,
             cylinder_length_mm,
@@ -208,6 +187,36 @@ impl Layout {
             sphere_total,
         })
     }
+}
+
+/// The particles of `classes`, in order, on layers of `layer`'s points `cell` apart upwards
+/// from height `z0` (mm), each layer turned by its own random angle (so that particles do
+/// not land in vertical columns) and each particle by a random orientation, all drawn from
+/// `rng`.
+pub fn stack_layers(
+    layer: &[[f64; 2]],
+    z0: f64,
+    cell: f64,
+    classes: Vec<usize>,
+    rng: &mut SplitMix64,
+) -> Vec<Placed> {
+    let mut particles = Vec::with_capacity(classes.len());
+    for (k, chunk) in classes.chunks(layer.len()).enumerate() {
+        let turn = 2.0 * PI * unit_uniform(rng);
+        let (s, c) = turn.sin_cos();
+        for (p, &class) in layer.iter().zip(chunk) {
+            particles.push(Placed {
+                class,
+                position_mm: [
+                    c * p[0] - s * p[1],
+                    s * p[0] + c * p[1],
+                    z0 + k as f64 * cell,
+                ],
+                orientation: random_quaternion(rng),
+            });
+        }
+    }
+    particles
 }
 
 /// Runs the repose rig (module notes).

@@ -23,11 +23,13 @@ pub enum Experiment {
     PodBulkDensity,
     /// Pods in a rotating drum (dynamic angle of repose, issue 22).
     PodDrum,
+    /// Pods running out of a silo through an orifice (mass flow rate, issue 22).
+    PodHopper,
 }
 
 impl Experiment {
     /// Every experiment, in declaration order.
-    pub const ALL: [Experiment; 7] = [
+    pub const ALL: [Experiment; 8] = [
         Self::Repose,
         Self::PlateDrop,
         Self::InclineSlide,
@@ -35,6 +37,7 @@ impl Experiment {
         Self::Compression,
         Self::PodBulkDensity,
         Self::PodDrum,
+        Self::PodHopper,
     ];
 
     /// The name used in study files.
@@ -47,6 +50,7 @@ impl Experiment {
             Self::Compression => "compression",
             Self::PodBulkDensity => "pod_bulk_density",
             Self::PodDrum => "pod_drum",
+            Self::PodHopper => "pod_hopper",
         }
     }
 }

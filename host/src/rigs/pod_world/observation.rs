@@ -34,6 +34,8 @@ pub enum ObservationDetails {
     PodBulkDensity(BulkDensityDetails),
     /// Pod drum rig.
     PodDrum(DrumDetails),
+    /// Pod hopper rig.
+    PodHopper(HopperDetails),
 }
 
 /// The result of one virtual experiment.
@@ -186,4 +188,37 @@ pub struct DrumDetails {
     pub samples_deg: Vec<f64>,
     /// Their sample standard deviation, degrees.
     pub sample_sd_deg: f64,
+}
+
+/// Details of the pod hopper run (`crate::rigs::pod_hopper`).
+#[derive(Debug, Clone, Serialize)]
+pub struct HopperDetails {
+    /// Pods in the silo.
+    pub pods: u32,
+    /// Spheres over all pods.
+    pub spheres: u32,
+    /// Silo diameter, mm.
+    pub silo_diameter_mm: f64,
+    /// Orifice diameter, mm.
+    pub orifice_diameter_mm: f64,
+    /// Depth of the catch floor below the orifice plate, mm.
+    pub catch_depth_mm: f64,
+    /// Mass of the fill, kg.
+    pub fill_mass_kg: f64,
+    /// Height of the highest pod's centre of mass in the settled fill, mm.
+    pub fill_level_mm: f64,
+    /// Time step, s.
+    pub dt_s: f64,
+    /// When the shutter opened, s.
+    pub opened_s: f64,
+    /// The flow window's start and end, s after the opening.
+    pub window_s: [f64; 2],
+    /// Whether the discharge stopped short of the window's upper fraction.
+    pub jammed: bool,
+    /// Fraction of the fill below the plate at the end.
+    pub discharged_fraction: f64,
+    /// End of the run, s.
+    pub end_s: f64,
+    /// Steps run.
+    pub steps: u64,
 }
