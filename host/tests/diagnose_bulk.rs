@@ -43,4 +43,17 @@ fn hidden_cohesion_in_hopper_and_drum_data_is_ranked_first() {
         "{text}"
     );
     assert!(!text.contains("warning: every"), "{text}");
+    // The proposal's own differences are paired over two placements as well, and at the
+    // proposed orifice both effects' lie within that scatter (Student's 12.7 SE for two
+    // placements): the tool says the proposal may rest on noise.
+    let proposal = text
+        .lines()
+        .skip_while(|l| !l.starts_with("to tell"))
+        .nth(1)
+        .unwrap_or_else(|| panic!("no proposal in\n{text}"));
+    assert!(
+        proposal.contains("pod-pod.cohesion_j_m3 and pod-pod.epsd_rolling_friction lie within")
+            && proposal.contains("may rest on noise"),
+        "{proposal}"
+    );
 }

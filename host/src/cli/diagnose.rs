@@ -13,6 +13,7 @@ use anyhow::Result;
 
 use crate::calibration::ParameterValues;
 use crate::diagnose::model::Model;
+use crate::diagnose::params::ParamInfo;
 use crate::diagnose::prospect;
 use crate::diagnose::residuals::{lack_of_fit, Dataset, Experiment};
 use crate::diagnose::scatter::{differences, lost_in_scatter, ScatteredDifference, CONFIDENCE};
@@ -370,6 +371,17 @@ fn write_proposals(
             e.rig, e.condition.1
         )
     };
+    // A proposal computed from differences lost in the placements' scatter rests on noise.
+    let noise_warning = |noisy: &[&ParamInfo]| {
+        if !noisy.is_empty() {
+            let names: Vec<&str> = noisy.iter().map(|e| e.name).collect();
+            println!(
+                "  warning: there, the finite differences of {} lie within the placements' \
+                 scatter, so this proposal may rest on noise; {MORE_PLACEMENTS}",
+                names.join(" and ")
+            );
+        }
+    };
     // A separating measurement only helps when there is something to tell apart: a claimed
     // effect or an indistinguishable pair.
     let proposing = !args.no_proposal;
@@ -399,6 +411,7 @@ fn write_proposals(
                     p.separation_now,
                     p.separation_after
                 );
+                noise_warning(&p.noisy);
             }
             // Where the measured rigs leave effects indistinguishable, another rig may do
             // better than any new condition of theirs.
@@ -434,6 +447,7 @@ fn write_proposals(
                 },
                 measure(i.experiment, i.condition),
             );
+            noise_warning(&i.noisy);
         }
     } else if !considered.is_empty() {
         println!(

@@ -51,17 +51,29 @@ impl ScatteredDifference {
     /// |t| at which the difference stands out of its scatter: Student's t quantile at
     /// (1 + [`CONFIDENCE`])/2 with placements − 1 degrees of freedom.
     pub fn threshold(&self) -> f64 {
-        let df = f64::from(self.placements.max(2) - 1);
-        StudentsT::new(0.0, 1.0, df)
-            .map(|t| t.inverse_cdf((1.0 + CONFIDENCE) / 2.0))
-            .unwrap_or(f64::INFINITY)
+        threshold(self.placements)
     }
 
     /// Whether the difference is within [`ScatteredDifference::threshold`] standard errors of
     /// zero.
     pub fn within_scatter(&self) -> bool {
-        self.t().abs() < self.threshold()
+        lost_in_noise(self.value, self.se, self.placements)
     }
+}
+
+/// |t| at which a difference paired over `placements` stands out of its scatter: Student's t
+/// quantile at (1 + [`CONFIDENCE`])/2 with placements − 1 degrees of freedom.
+pub fn threshold(placements: u32) -> f64 {
+    let df = f64::from(placements.max(2) - 1);
+    StudentsT::new(0.0, 1.0, df)
+        .map(|t| t.inverse_cdf((1.0 + CONFIDENCE) / 2.0))
+        .unwrap_or(f64::INFINITY)
+}
+
+/// Whether a difference `value` with standard error `se` over `placements` (a rig simulated
+/// at several placements; `se` 0 means it was simulated once) lies within its scatter.
+pub fn lost_in_noise(value: f64, se: f64, placements: u32) -> bool {
+    se > 0.0 && (value / se).abs() < threshold(placements)
 }
 
 /// Every finite difference of `lin` that has a standard error (those of replicated rigs),

@@ -135,7 +135,7 @@ impl Steps {
 }
 
 /// Standard error of the mean of `x`: SD/√n, 0 for fewer than two values.
-fn standard_error(x: &[f64]) -> f64 {
+pub(super) fn standard_error(x: &[f64]) -> f64 {
     if x.len() < 2 {
         return 0.0;
     }

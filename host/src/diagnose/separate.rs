@@ -18,11 +18,12 @@
 use anyhow::Result;
 use nalgebra::{DMatrix, DVector};
 
-use super::model::Model;
+use super::model::{replicate_mean, Model};
 use super::params::{value, ParamInfo};
 use super::residuals::{Dataset, Experiment};
+use super::scatter::lost_in_noise;
 use super::score::{column_basis, IDENTIFIABLE_FRACTION};
-use super::sensitivity::{Difference, Linearisation};
+use super::sensitivity::{standard_error, Difference, Linearisation};
 use crate::calibration::{Condition, ParameterValues};
 
 /// Candidate conditions per experiment (log-spaced over its rig's search range, the
@@ -52,6 +53,9 @@ struct Row {
     calibrated: Vec<f64>,
     /// The row of each effect asked for, in that order.
     effects: Vec<f64>,
+    /// Whether each effect's finite difference lies within the placements' scatter
+    /// ([`lost_in_noise`]; never for a rig simulated once).
+    noisy: Vec<bool>,
 }
 
 /// A proposed measurement.
@@ -66,6 +70,9 @@ pub struct Proposal {
     pub separation_after: f64,
     /// Separation of the current design.
     pub separation_now: f64,
+    /// The two effects whose finite difference at the proposal lies within the placements'
+    /// scatter: a proposal that rests on them rests on noise.
+    pub noisy: Vec<&'static ParamInfo>,
 }
 
 fn separation(
@@ -126,17 +133,32 @@ fn rows(
             );
         }
     }
-    let y = search.model.simulate_all(&runs)?;
+    // Each placement of every run, so that each effect's difference has its paired scatter.
+    let y = search.model.simulate_replicates(&runs)?;
     let per_point = 1 + stepped.iter().map(|(_, d)| d.shifts().len()).sum::<usize>();
     Ok(grid
         .iter()
         .zip(y.chunks(per_point))
         .map(|((ei, x, _, wx), y)| {
+            let means: Vec<f64> = y.iter().map(|v| replicate_mean(v)).collect();
+            let placements = y[0].len();
             let mut row = Vec::with_capacity(stepped.len());
+            let mut noisy = Vec::with_capacity(effects.len());
             let mut k = 1;
-            for (info, difference) in &stepped {
+            for (j, (info, difference)) in stepped.iter().enumerate() {
                 let m = difference.shifts().len();
-                row.push(difference.derivative(info.fd_step, &y[k..k + m], y[0]) * wx);
+                let value = difference.derivative(info.fd_step, &means[k..k + m], means[0]);
+                row.push(value * wx);
+                if j >= lin.calibrated.len() {
+                    let paired: Vec<f64> = (0..placements)
+                        .map(|r| {
+                            let ys: Vec<f64> = y[k..k + m].iter().map(|v| v[r]).collect();
+                            difference.derivative(info.fd_step, &ys, y[0][r])
+                        })
+                        .collect();
+                    let se = standard_error(&paired);
+                    noisy.push(lost_in_noise(value, se, placements as u32));
+                }
                 k += m;
             }
             let effects = row.split_off(lin.calibrated.len());
@@ -145,6 +167,7 @@ fn rows(
                 condition: *x,
                 calibrated: row,
                 effects,
+                noisy,
             }
         })
         .collect())
@@ -197,6 +220,11 @@ pub fn propose(
                 condition: row.condition,
                 separation_after: s,
                 separation_now: now,
+                noisy: [a.0, b.0]
+                    .into_iter()
+                    .zip(&row.noisy)
+                    .filter_map(|(info, noisy)| noisy.then_some(info))
+                    .collect(),
             });
         }
     }
@@ -213,6 +241,8 @@ pub struct Identification {
     /// The candidates it would make identifiable, each with the share of its signature the
     /// calibration could no longer absorb.
     pub identifiable: Vec<(&'static ParamInfo, f64)>,
+    /// Those of them whose finite difference there lies within the placements' scatter.
+    pub noisy: Vec<&'static ParamInfo>,
 }
 
 /// The share of `s` outside the span of the orthonormal columns `basis` (0 for a zero `s`).
@@ -258,19 +288,23 @@ pub fn identify(
             (row, each)
         })
         .collect();
-    let at = |(row, each): &(Row, Vec<f64>), only: Option<usize>| Identification {
-        experiment: row.experiment,
-        condition: row.condition,
-        identifiable: lin
-            .candidates
-            .iter()
-            .zip(each)
-            .enumerate()
-            .filter(|(k, (_, share))| {
-                **share >= IDENTIFIABLE_FRACTION && only.is_none_or(|o| o == *k)
-            })
-            .map(|(_, (info, share))| (*info, *share))
-            .collect(),
+    let at = |(row, each): &(Row, Vec<f64>), only: Option<usize>| {
+        let chosen: Vec<usize> = (0..lin.candidates.len())
+            .filter(|&k| each[k] >= IDENTIFIABLE_FRACTION && only.is_none_or(|o| o == k))
+            .collect();
+        Identification {
+            experiment: row.experiment,
+            condition: row.condition,
+            identifiable: chosen
+                .iter()
+                .map(|&k| (lin.candidates[k], each[k]))
+                .collect(),
+            noisy: chosen
+                .iter()
+                .filter(|&&k| row.noisy[k])
+                .map(|&k| lin.candidates[k])
+                .collect(),
+        }
     };
     let score = |each: &[f64]| {
         let ok: Vec<f64> = each
