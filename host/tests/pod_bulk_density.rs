@@ -23,7 +23,7 @@ use arachis::rigs::pod_world::{
 use arachis::rigs::repose_cylinder::at_rest_energy_j;
 use arachis::study::Study;
 
-use crate::cli_support::{arachis_at_root, REPO_ROOT};
+use crate::cli_support::{assert_simulate_refuses_measurement, REPO_ROOT};
 
 const STUDY: &str = "testdata/peanut-pods-saline/study.toml";
 
@@ -185,26 +185,10 @@ fn the_drop_height_comes_from_the_condition_else_the_default() {
 
 #[test]
 fn a_drop_height_outside_its_range_is_refused_and_nothing_is_written() {
-    let dir = tempfile::tempdir().unwrap();
-    let study = std::fs::read_to_string(Path::new(REPO_ROOT).join(STUDY)).unwrap();
-    let bad = format!(
-        "{study}\n[[measurements]]\nexperiment = \"pod_bulk_density\"\nquantity = \
-         \"bulk_density\"\nunit = \"kg/m^3\"\ncondition = {{ drop_height_mm = 5.0 }}\nmean = \
-         300.0\nn = 3\n"
-    );
-    let path = dir.path().join("study.toml");
-    std::fs::write(&path, bad).unwrap();
-    let vtk = dir.path().join("frames");
-    let out = arachis_at_root(&[
-        "simulate",
+    assert_simulate_refuses_measurement(
         "pod_bulk_density",
-        "--study",
-        path.to_str().unwrap(),
-        "--vtk",
-        vtk.to_str().unwrap(),
-    ]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("drop_height_mm"), "{stderr}");
-    assert!(!vtk.exists());
+        "experiment = \"pod_bulk_density\"\nquantity = \"bulk_density\"\nunit = \
+         \"kg/m^3\"\ncondition = { drop_height_mm = 5.0 }\nmean = 300.0\nn = 3",
+        "drop_height_mm",
+    );
 }

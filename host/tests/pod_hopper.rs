@@ -28,7 +28,7 @@ use arachis::rigs::pod_world::{
 use arachis::study::Study;
 use arachis_core::units::STANDARD_GRAVITY_M_S2;
 
-use crate::cli_support::{arachis_at_root, REPO_ROOT};
+use crate::cli_support::{assert_simulate_refuses_measurement, REPO_ROOT};
 
 const STUDY: &str = "testdata/peanut-pods-saline/study.toml";
 
@@ -175,26 +175,10 @@ fn pods_arch_over_a_narrow_orifice_and_run_through_a_wide_one() {
 
 #[test]
 fn an_orifice_that_does_not_fit_the_silo_is_refused_and_nothing_is_written() {
-    let dir = tempfile::tempdir().unwrap();
-    let study = std::fs::read_to_string(study_path()).unwrap();
-    let bad = format!(
-        "{study}\n[[measurements]]\nexperiment = \"pod_hopper\"\nquantity = \
-         \"mass_flow_rate\"\nunit = \"g/s\"\ncondition = {{ orifice_diameter_mm = 300.0 }}\n\
-         mean = 3000.0\nn = 3\n"
-    );
-    let path = dir.path().join("study.toml");
-    std::fs::write(&path, bad).unwrap();
-    let vtk = dir.path().join("frames");
-    let out = arachis_at_root(&[
-        "simulate",
+    assert_simulate_refuses_measurement(
         "pod_hopper",
-        "--study",
-        path.to_str().unwrap(),
-        "--vtk",
-        vtk.to_str().unwrap(),
-    ]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("orifice_diameter_mm = 300"), "{stderr}");
-    assert!(!vtk.exists());
+        "experiment = \"pod_hopper\"\nquantity = \"mass_flow_rate\"\nunit = \"g/s\"\n\
+         condition = { orifice_diameter_mm = 300.0 }\nmean = 3000.0\nn = 3",
+        "orifice_diameter_mm = 300",
+    );
 }

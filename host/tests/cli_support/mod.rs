@@ -79,3 +79,23 @@ pub fn assert_refused(args: &[&str], named: &str, unwritten: &std::path::Path) -
     );
     err
 }
+
+/// Runs `arachis simulate EXPERIMENT` on the shipped seed-000 study with one more
+/// `[[measurements]]` block, `measurement` (its keys, without the header), and asserts it is
+/// refused ([`assert_refused`]): exit 2, `named` in the message, and no VTK folder written.
+pub fn assert_simulate_refuses_measurement(experiment: &str, measurement: &str, named: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    let study = std::fs::read_to_string(
+        std::path::Path::new(REPO_ROOT).join("testdata/peanut-pods-saline/study.toml"),
+    )
+    .unwrap();
+    let path = dir.path().join("study.toml");
+    std::fs::write(&path, format!("{study}\n[[measurements]]\n{measurement}\n")).unwrap();
+    let vtk = dir.path().join("frames");
+    let (study, frames) = (path.to_str().unwrap(), vtk.to_str().unwrap());
+    assert_refused(
+        &["simulate", experiment, "--study", study, "--vtk", frames],
+        named,
+        &vtk,
+    );
+}
