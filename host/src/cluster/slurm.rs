@@ -246,6 +246,17 @@ impl Remote for SlurmExecutor {
                 if flying.contains(&hash) {
                     continue;
                 }
+                // Looked up again after the queue was read: a task that stored its run and
+                // left the queue between the lookup above and `squeue` is neither stored
+                // there nor in flight here, and would run twice. A worker stores before its
+                // task ends, so a run whose task has left the queue is stored by now (a CI
+                // run caught a task finishing in that window, and its run twice).
+                if cache
+                    .load(r.spec, r.spec_hash, r.rig_id, r.quantity)
+                    .is_some()
+                {
+                    continue;
+                }
                 let (tries, log) = attempts(&arrays, &self.ledger, &hash);
                 if tries > self.settings.retries as usize {
                     let log = log.unwrap_or_default();
