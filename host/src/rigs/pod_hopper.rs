@@ -33,6 +33,7 @@
 //! orifices far more than large ones).
 
 use arachis_core::prelude::*;
+use arachis_core::scenario::hopper::discharged_mass_g;
 
 use super::kind::{ConditionKey, Quantity, RigKind, WorldKind};
 use super::pod_bench::{PodTest, MOISTURE};
@@ -281,15 +282,6 @@ fn flow_rate(readings: &[Reading], total_g: f64) -> (f64, [f64; 2], bool) {
     (rate, [start, end], jammed)
 }
 
-/// Mass of the pods whose centre of mass is below the orifice plate, g.
-fn discharged_g(w: &World<'_, Fx>) -> f64 {
-    w.bodies()
-        .iter()
-        .filter(|b| b.position.z < Fx::ZERO)
-        .map(|b| b.mass.to_f64())
-        .sum()
-}
-
 /// Runs the pod hopper (module notes).
 pub fn run(
     inputs: &RunInputs,
@@ -413,7 +405,7 @@ pub fn run(
         }
         readings.push(Reading {
             t_s: w.time_s() - opened_s,
-            mass_g: discharged_g(&w),
+            mass_g: discharged_mass_g(&w),
         });
     }
     frames.record(&w);
