@@ -80,11 +80,27 @@ fn mul_sub_wide(a: i64, b: i64, c: i64, d: i64, s: u32) -> i64 {
     ((a as i128 * b as i128 - c as i128 * d as i128 + (1i128 << (s - 1))) >> s) as i64
 }
 
-/// `[f(0), f(1), f(2)]`, written out so that it always inlines (`core::array::from_fn` did
-/// not, in the contact loop).
-#[inline(always)]
-fn each3(f: impl Fn(usize) -> i64) -> [i64; 3] {
-    [f(0), f(1), f(2)]
+/// `[e(0), e(1), e(2)]` for an expression `e` in the component index: `each3!(|k| e)`.
+/// A macro, not a function taking a closure: LLVM kept several such closures out of line
+/// in the contact loop (13 call sites), and every call spilled the caller-saved registers
+/// of the whole scan around it.
+macro_rules! each3 {
+    (|$k:ident| $e:expr) => {
+        [
+            {
+                let $k = 0usize;
+                $e
+            },
+            {
+                let $k = 1usize;
+                $e
+            },
+            {
+                let $k = 2usize;
+                $e
+            },
+        ]
+    };
 }
 
 /// Largest |component| bound: |x| | |y| | |z| (below 2^k iff every component is).
@@ -141,8 +157,7 @@ fn scale_by_ratio(v: [i64; 3], target: i64, v2: u128) -> [i64; 3] {
     // 1/√v2 = y·2^(−62 − s/2) (v2 in raw units squared); v·target < 2^93, times y < 2^124.
     let sh = 62 + s / 2;
     let sh = sh.clamp(1, 126) as u32;
-    let scale = |c: i64| ((c as i128 * target as i128 * y + (1i128 << (sh - 1))) >> sh) as i64;
-    [scale(v[0]), scale(v[1]), scale(v[2])]
+    each3!(|k| ((v[k] as i128 * target as i128 * y + (1i128 << (sh - 1))) >> sh) as i64)
 }
 
 /// `v` rescaled to length `target` (Q.32), where v2 = |v|² (Q.64).
@@ -175,9 +190,48 @@ fn distance_and_normal(d: [i64; 3], d2: u128) -> Option<(i64, [i64; 3])> {
     if !(1..=62).contains(&sh_n) {
         return None;
     }
-    let unit = |c: i64| shr(shr(c, STATE - 26) * y as i64, sh_n as u32);
-    let n = [unit(d[0]), unit(d[1]), unit(d[2])];
+    let n = each3!(|k| shr(shr(d[k], STATE - 26) * y as i64, sh_n as u32));
     Some((dist, n))
+}
+
+/// The raw integers of a vector.
+#[inline(always)]
+fn raw3(v: Vec3<FxFast>) -> [i64; 3] {
+    [v.x.raw(), v.y.raw(), v.z.raw()]
+}
+
+/// A vector of raw integers.
+#[inline(always)]
+fn fx(v: [i64; 3]) -> Vec3<FxFast> {
+    Vec3::new(
+        FxFast::from_raw(v[0]),
+        FxFast::from_raw(v[1]),
+        FxFast::from_raw(v[2]),
+    )
+}
+
+/// o × f in Q.32 (each component one rounded 128-bit difference of products).
+#[inline(always)]
+fn cross_wide(o: [i64; 3], f: [i64; 3]) -> [i64; 3] {
+    [
+        mul_sub_wide(o[1], f[2], o[2], f[1], STATE),
+        mul_sub_wide(o[2], f[0], o[0], f[2], STATE),
+        mul_sub_wide(o[0], f[1], o[1], f[0], STATE),
+    ]
+}
+
+/// The rolling lever from a body's centre of mass to the contact point (Q.32): `len` for a
+/// single sphere, |o + sign·n̂·len| for a clump sphere whose centre lies at `offset`.
+#[inline(always)]
+fn lever(n30: [i64; 3], len: i64, offset: Option<Vec3<FxFast>>, sign: i64) -> i64 {
+    match offset {
+        Some(o) => {
+            let o = raw3(o);
+            let arm: [i64; 3] = each3!(|k| o[k] + sign * mul_wide(n30[k], len, UNIT));
+            sqrt_coarse(arm.iter().map(|&x| (x as i128 * x as i128) as u128).sum())
+        }
+        None => len,
+    }
 }
 
 /// Evaluate the fused law (module docs of [`super`]) on raw integers; `None` outside the
@@ -188,7 +242,6 @@ pub fn evaluate(
     p: &FusedPair<FxFast>,
     delta: &mut Vec3<FxFast>,
 ) -> Option<FusedLoad<FxFast>> {
-    let raw3 = |v: Vec3<FxFast>| [v.x.raw(), v.y.raw(), v.z.raw()];
     let (kn, kt) = (p.four_thirds_e_star.raw(), p.eight_g_star.raw());
     let (cn, ct) = (p.normal_damping.raw(), p.tangential_damping.raw());
     let ri = c.r_i.raw();
@@ -257,9 +310,9 @@ pub fn evaluate(
     // These products stay 128-bit: a stiff, damped contact turns a velocity error of 1e-7
     // into a force error of 1e-5 of its force.
     let spin: [i64; 3] = if li == lj {
-        each3(|k| mul_wide(wi[k] + wj[k], li, STATE))
+        each3!(|k| mul_wide(wi[k] + wj[k], li, STATE))
     } else {
-        each3(|k| {
+        each3!(|k| {
             ((wi[k] as i128 * li as i128 + wj[k] as i128 * lj as i128 + HALF_UNIT) >> STATE) as i64
         })
     };
@@ -272,7 +325,7 @@ pub fn evaluate(
         v[2] - mul_sub_wide(spin[0], n30[1], spin[1], n30[0], UNIT),
     ];
     let vn = dot_wide(vc, n30, UNIT);
-    let vt: [i64; 3] = each3(|k| vc[k] - mul_wide(n30[k], vn, UNIT));
+    let vt: [i64; 3] = each3!(|k| vc[k] - mul_wide(n30[k], vn, UNIT));
 
     // Contact radius a = √(R*α) and √(a·m*) (Q.32).
     let a = sqrt_coarse(r_star as u128 * alpha as u128);
@@ -294,14 +347,14 @@ pub fn evaluate(
     // Tangential: history projected on the tangent plane plus vt·dt, spring and damping.
     let dn = dot_wide(d0, n30, UNIT);
     let mut d1: [i64; 3] =
-        each3(|k| d0[k] - mul_wide(n30[k], dn, UNIT) + mul_wide(vt[k], dt, STATE));
+        each3!(|k| d0[k] - mul_wide(n30[k], dn, UNIT) + mul_wide(vt[k], dt, STATE));
     if magnitude(d1) >= DELTA_RAW {
         return None;
     }
     let st = mul_wide(kt, a, STATE);
-    let spring: [i64; 3] = each3(|k| mul_wide(st, d1[k], STATE));
+    let spring: [i64; 3] = each3!(|k| mul_wide(st, d1[k], STATE));
     let damp_t = mul_wide(ct, root_am, STATE);
-    let mut f_t: [i64; 3] = each3(|k| -(spring[k] + mul_wide(damp_t, vt[k], STATE)));
+    let mut f_t: [i64; 3] = each3!(|k| -(spring[k] + mul_wide(damp_t, vt[k], STATE)));
     if magnitude(f_t) >= FORCE_RAW {
         return None;
     }
@@ -325,32 +378,25 @@ pub fn evaluate(
     }
 
     // Loads: force on j, torques about each centre of mass, CDT rolling magnitudes (eq. (7)).
-    let force: [i64; 3] = each3(|k| mul_wide(n30[k], f_n, UNIT) + f_t[k]);
+    let force: [i64; 3] = each3!(|k| mul_wide(n30[k], f_n, UNIT) + f_t[k]);
     let tau = [
         mul_sub_wide(n30[1], f_t[2], n30[2], f_t[1], UNIT),
         mul_sub_wide(n30[2], f_t[0], n30[0], f_t[2], UNIT),
         mul_sub_wide(n30[0], f_t[1], n30[1], f_t[0], UNIT),
     ];
-    let mut torque_i: [i64; 3] = each3(|k| mul_wide(tau[k], li, STATE));
+    let mut torque_i: [i64; 3] = each3!(|k| mul_wide(tau[k], li, STATE));
     let mut torque_j: [i64; 3] = if li == lj {
         torque_i.map(|x| -x)
     } else {
-        each3(|k| -mul_wide(tau[k], lj, STATE))
-    };
-    let cross_force = |o: [i64; 3]| -> [i64; 3] {
-        [
-            mul_sub_wide(o[1], force[2], o[2], force[1], STATE),
-            mul_sub_wide(o[2], force[0], o[0], force[2], STATE),
-            mul_sub_wide(o[0], force[1], o[1], force[0], STATE),
-        ]
+        each3!(|k| -mul_wide(tau[k], lj, STATE))
     };
     if let Some(o) = c.offset_i {
-        let t = cross_force(raw3(o));
-        torque_i = each3(|k| torque_i[k] + t[k]);
+        let t = cross_wide(raw3(o), force);
+        torque_i = each3!(|k| torque_i[k] + t[k]);
     }
     if let Some(o) = c.offset_j {
-        let t = cross_force(raw3(o));
-        torque_j = each3(|k| torque_j[k] + t[k]);
+        let t = cross_wide(raw3(o), force);
+        torque_j = each3!(|k| torque_j[k] + t[k]);
     }
     let (mut roll_i, mut roll_j) = (0, 0);
     let mu_r = p.rolling_friction.raw();
@@ -358,26 +404,11 @@ pub fn evaluate(
         let t = mul_wide(mu_r, f_n, STATE);
         // Lever from a body's centre of mass to the contact point: L for a single sphere,
         // |o ± n̂L| for a clump sphere.
-        let lever = |len: i64, offset: Option<Vec3<FxFast>>, sign: i64| match offset {
-            Some(o) => {
-                let o = raw3(o);
-                let arm: [i64; 3] = each3(|k| o[k] + sign * mul_wide(n30[k], len, UNIT));
-                sqrt_coarse(arm.iter().map(|&x| (x as i128 * x as i128) as u128).sum())
-            }
-            None => len,
-        };
-        roll_i = mul_wide(t, lever(li, c.offset_i, 1), STATE);
+        roll_i = mul_wide(t, lever(n30, li, c.offset_i, 1), STATE);
         if let Geometry::Spheres { .. } = c.geometry {
-            roll_j = mul_wide(t, lever(lj, c.offset_j, -1), STATE);
+            roll_j = mul_wide(t, lever(n30, lj, c.offset_j, -1), STATE);
         }
     }
-    let fx = |v: [i64; 3]| {
-        Vec3::new(
-            FxFast::from_raw(v[0]),
-            FxFast::from_raw(v[1]),
-            FxFast::from_raw(v[2]),
-        )
-    };
     *delta = fx(d1);
     Some(FusedLoad {
         force: fx(force),
