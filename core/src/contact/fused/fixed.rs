@@ -210,13 +210,13 @@ fn fx(v: [i64; 3]) -> Vec3<FxFast> {
     )
 }
 
-/// o × f in Q.32 (each component one rounded 128-bit difference of products).
+/// a × b, each component one 128-bit difference of products rounded and shifted right by s.
 #[inline(always)]
-fn cross_wide(o: [i64; 3], f: [i64; 3]) -> [i64; 3] {
+fn cross_wide(a: [i64; 3], b: [i64; 3], s: u32) -> [i64; 3] {
     [
-        mul_sub_wide(o[1], f[2], o[2], f[1], STATE),
-        mul_sub_wide(o[2], f[0], o[0], f[2], STATE),
-        mul_sub_wide(o[0], f[1], o[1], f[0], STATE),
+        mul_sub_wide(a[1], b[2], a[2], b[1], s),
+        mul_sub_wide(a[2], b[0], a[0], b[2], s),
+        mul_sub_wide(a[0], b[1], a[1], b[0], s),
     ]
 }
 
@@ -379,11 +379,7 @@ pub fn evaluate(
 
     // Loads: force on j, torques about each centre of mass, CDT rolling magnitudes (eq. (7)).
     let force: [i64; 3] = each3!(|k| mul_wide(n30[k], f_n, UNIT) + f_t[k]);
-    let tau = [
-        mul_sub_wide(n30[1], f_t[2], n30[2], f_t[1], UNIT),
-        mul_sub_wide(n30[2], f_t[0], n30[0], f_t[2], UNIT),
-        mul_sub_wide(n30[0], f_t[1], n30[1], f_t[0], UNIT),
-    ];
+    let tau = cross_wide(n30, f_t, UNIT);
     let mut torque_i: [i64; 3] = each3!(|k| mul_wide(tau[k], li, STATE));
     let mut torque_j: [i64; 3] = if li == lj {
         torque_i.map(|x| -x)
@@ -391,19 +387,17 @@ pub fn evaluate(
         each3!(|k| -mul_wide(tau[k], lj, STATE))
     };
     if let Some(o) = c.offset_i {
-        let t = cross_wide(raw3(o), force);
+        let t = cross_wide(raw3(o), force, STATE);
         torque_i = each3!(|k| torque_i[k] + t[k]);
     }
     if let Some(o) = c.offset_j {
-        let t = cross_wide(raw3(o), force);
+        let t = cross_wide(raw3(o), force, STATE);
         torque_j = each3!(|k| torque_j[k] + t[k]);
     }
     let (mut roll_i, mut roll_j) = (0, 0);
     let mu_r = p.rolling_friction.raw();
     if mu_r != 0 {
         let t = mul_wide(mu_r, f_n, STATE);
-        // Lever from a body's centre of mass to the contact point: L for a single sphere,
-        // |o ± n̂L| for a clump sphere.
         roll_i = mul_wide(t, lever(n30, li, c.offset_i, 1), STATE);
         if let Geometry::Spheres { .. } = c.geometry {
             roll_j = mul_wide(t, lever(n30, lj, c.offset_j, -1), STATE);
