@@ -99,6 +99,25 @@ impl<S: Scalar> Vec3<S> {
             return Some((self.scale(r), q * r));
         }
         let k = -m.log2_floor();
+        if self.is_valid() {
+            // Every step but the last is bounded by the scaling: |u| < 2 per component (2^33
+            // raw), |u|² < 12, 1/|u| ≤ 1, so the unchecked arithmetic (the same bits as the
+            // checked one inside the range) cannot overflow. Only the length, scaled back by
+            // 2^-k, can leave the range, and stays checked. The reciprocal root is the world
+            // scalar's own, so the bits are those of the checked path below.
+            let f = S::to_fast;
+            let u = Vec3::new(
+                f(self.x).mul_pow2(k),
+                f(self.y).mul_pow2(k),
+                f(self.z).mul_pow2(k),
+            );
+            let q = u.norm2();
+            let r = S::from_fast(q).rsqrt().to_fast();
+            return Some((
+                u.scale(r).map(S::from_fast),
+                S::from_fast(q * r).mul_pow2(-k),
+            ));
+        }
         let u = Vec3::new(self.x.mul_pow2(k), self.y.mul_pow2(k), self.z.mul_pow2(k));
         let q = u.norm2();
         let r = q.rsqrt();
@@ -149,5 +168,58 @@ impl<S: Scalar> SubAssign for Vec3<S> {
     #[inline(always)]
     fn sub_assign(&mut self, o: Self) {
         *self = *self - o;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::num::Fx;
+
+    /// The checked normalisation, operation by operation: the reference for the unchecked one.
+    fn normalize_checked(v: Vec3<Fx>) -> Option<(Vec3<Fx>, Fx)> {
+        let m = Scalar::max(Scalar::max(v.x.abs(), v.y.abs()), v.z.abs());
+        if m == Fx::ZERO {
+            return None;
+        }
+        let k = -m.log2_floor();
+        let u = Vec3::new(v.x.mul_pow2(k), v.y.mul_pow2(k), v.z.mul_pow2(k));
+        let q = u.norm2();
+        let r = q.rsqrt();
+        Some((u.scale(r), (q * r).mul_pow2(-k)))
+    }
+
+    /// A raw component of any magnitude from one unit to the edge of the range, either sign.
+    fn component(x: u64) -> Fx {
+        let shift = (x >> 58) as u32; // 0..=63
+        let raw = ((x << 6) >> shift.max(1)) as i64;
+        Fx::from_raw(if x & 1 == 0 { raw } else { -raw })
+    }
+
+    #[test]
+    fn unchecked_normalisation_gives_the_checked_bits() {
+        let mut s = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            s
+        };
+        let mut overflowed = 0;
+        for i in 0..400_000 {
+            let mut v = Vec3::new(component(next()), component(next()), component(next()));
+            match i % 50 {
+                0 => v.y = Fx::ZERO,
+                1 => v = Vec3::new(Fx::ZERO, Fx::ZERO, v.z),
+                2 => v.x = Fx::POISON,
+                3 => v = Vec3::new(Fx::from_raw(i64::MAX), Fx::from_raw(i64::MAX), v.z),
+                _ => {}
+            }
+            let want = normalize_checked(v);
+            assert_eq!(v.normalize_with_len(), want, "{v:?}");
+            overflowed += want.is_some_and(|(_, len)| !len.is_valid()) as u32;
+        }
+        // Long vectors whose length leaves the range are among them, and are still reported.
+        assert!(overflowed > 100, "{overflowed}");
     }
 }
