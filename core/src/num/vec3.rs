@@ -174,6 +174,7 @@ impl<S: Scalar> SubAssign for Vec3<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contact::fused::random_contacts::Stream;
     use crate::num::Fx;
 
     /// The checked normalisation, operation by operation: the reference for the unchecked one.
@@ -198,13 +199,8 @@ mod tests {
 
     #[test]
     fn unchecked_normalisation_gives_the_checked_bits() {
-        let mut s = 0x9E37_79B9_7F4A_7C15u64;
-        let mut next = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s
-        };
+        let mut stream = Stream(0x9E37_79B9_7F4A_7C15);
+        let mut next = || stream.bits();
         let mut overflowed = 0;
         for i in 0..400_000 {
             let mut v = Vec3::new(component(next()), component(next()), component(next()));

@@ -11,11 +11,15 @@ use crate::pair::{PairParams, PairSpec};
 /// A deterministic stream of uniform numbers in [0, 1).
 pub(crate) struct Stream(pub(crate) u64);
 impl Stream {
-    pub(crate) fn next(&mut self) -> f64 {
+    /// The next 64 raw bits (Marsaglia's xorshift64).
+    pub(crate) fn bits(&mut self) -> u64 {
         self.0 ^= self.0 << 13;
         self.0 ^= self.0 >> 7;
         self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        self.0
+    }
+    pub(crate) fn next(&mut self) -> f64 {
+        (self.bits() >> 11) as f64 / (1u64 << 53) as f64
     }
     pub(crate) fn range(&mut self, lo: f64, hi: f64) -> f64 {
         lo + (hi - lo) * self.next()
