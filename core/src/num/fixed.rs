@@ -250,6 +250,7 @@ pub fn isqrt_round_u128(v: u128) -> u128 {
 
 /// [`isqrt_round_wide`] takes v below 2^WIDE_ROOT_BITS, so that its guess stays below 2^60,
 /// inside the branch-free finish of [`round_root_from_guess`].
+#[cfg_attr(feature = "float-estimate", allow(dead_code))]
 const WIDE_ROOT_BITS: u32 = 2 * NEAREST_ROOT_GUESS_BITS;
 
 /// [`isqrt_round_u128`] for 2^64 ≤ v < 2^[`WIDE_ROOT_BITS`] with multiplications only. Every
