@@ -188,6 +188,7 @@ mod tests {
             Some(BreakCriterion::Tangential)
         );
     }
+
     /// A raw Q32.32 value of any magnitude up to `2^(32 + top)`, either sign.
     fn value(x: u64, top: u32) -> Fx {
         let bits = (x >> 58) as u32 % (33 + top); // magnitude below 2^bits raw
@@ -267,6 +268,7 @@ mod tests {
         );
         assert!(!Stresses::surely_holds(&b, &p));
     }
+
     #[test]
     fn a_bond_exactly_at_its_strength_is_not_sure() {
         // Tension only, no bending lever: the bound of σ is σ itself.

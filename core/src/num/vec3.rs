@@ -104,7 +104,7 @@ impl<S: Scalar> Vec3<S> {
             // raw), |u|² < 12, 1/|u| ≤ 1, so the unchecked arithmetic (the same bits as the
             // checked one inside the range) cannot overflow. Only the length, scaled back by
             // 2^-k, can leave the range, and stays checked. The reciprocal root is the world
-            // scalar's own, so the bits are those of the checked path below.
+            // scalar's own, so the bits are those of [`Vec3::scaled_unit_checked`].
             let f = S::to_fast;
             let u = Vec3::new(
                 f(self.x).mul_pow2(k),
@@ -118,10 +118,17 @@ impl<S: Scalar> Vec3<S> {
                 S::from_fast(q * r).mul_pow2(-k),
             ));
         }
+        Some(self.scaled_unit_checked(k))
+    }
+
+    /// The unit vector and length of a vector whose largest component times 2^k lies in
+    /// [1, 2), every operation checked: the path of a vector holding the overflow poison,
+    /// and the reference the unchecked path must match.
+    fn scaled_unit_checked(self, k: i32) -> (Self, S) {
         let u = Vec3::new(self.x.mul_pow2(k), self.y.mul_pow2(k), self.z.mul_pow2(k));
         let q = u.norm2();
         let r = q.rsqrt();
-        Some((u.scale(r), (q * r).mul_pow2(-k)))
+        (u.scale(r), (q * r).mul_pow2(-k))
     }
 
     /// |x| + |y| + |z|, an upper bound on the length without a square root.
@@ -180,14 +187,7 @@ mod tests {
     /// The checked normalisation, operation by operation: the reference for the unchecked one.
     fn normalize_checked(v: Vec3<Fx>) -> Option<(Vec3<Fx>, Fx)> {
         let m = Scalar::max(Scalar::max(v.x.abs(), v.y.abs()), v.z.abs());
-        if m == Fx::ZERO {
-            return None;
-        }
-        let k = -m.log2_floor();
-        let u = Vec3::new(v.x.mul_pow2(k), v.y.mul_pow2(k), v.z.mul_pow2(k));
-        let q = u.norm2();
-        let r = q.rsqrt();
-        Some((u.scale(r), (q * r).mul_pow2(-k)))
+        (m != Fx::ZERO).then(|| v.scaled_unit_checked(-m.log2_floor()))
     }
 
     /// A raw component of any magnitude from one unit to the edge of the range, either sign.
