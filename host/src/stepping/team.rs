@@ -6,8 +6,9 @@
 //! and then sleeps; waking it costs a system call and tens of microseconds on a virtual
 //! machine. Measured on the DESIGN §8 bed (2 000 spheres, 20 000 steps, 2 threads, rayon):
 //! each thread sat idle about 19 % of the wall time. A [`Team`] keeps its helpers spinning
-//! (then yielding the core) between stages, for as long as the run lasts, so a stage starts
-//! on every thread at once.
+//! between stages, for as long as the run lasts, so a stage starts on every thread at once;
+//! a wait that outlasts its spinning sleeps until the stage it waits for is published or
+//! finished ([`Backoff`] says why it sleeps rather than yields).
 //!
 //! The team lives inside [`std::thread::scope`]: [`Team::serve`] runs on each helper, the
 //! stepping loop on the calling thread, and [`Team::finish`] lets the helpers go.
@@ -36,12 +37,13 @@ use arachis_core::step::parts::Parallel;
 use std::cell::UnsafeCell;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicBool, AtomicU32, AtomicUsize, Ordering};
+use std::sync::{Condvar, Mutex, PoisonError};
 
 /// Most spins (each a `pause` instruction, about 40–140 cycles) before a waiting thread
-/// starts to yield its core to other threads instead: about a millisecond, several stages'
+/// sleeps and gives its core to other threads instead: about a millisecond, several stages'
 /// worth.
 const MAX_SPINS: u32 = 20_000;
-/// Fewest spins before yielding, once waits keep outlasting the spinning ([`Backoff`]).
+/// Fewest spins before sleeping, once waits keep outlasting the spinning ([`Backoff`]).
 const MIN_SPINS: u32 = 16;
 
 /// One stage's work: job `i` for a helper of index `i`.
@@ -63,6 +65,12 @@ pub struct Team {
     panicked: AtomicBool,
     /// The caller's spin budget between its stages ([`Backoff`]; only the caller uses it).
     caller_spins: AtomicU32,
+    /// Where a thread whose spinning is spent sleeps ([`Team::sleep_until`]); the mutex
+    /// guards nothing but the hand-over between a sleeper and [`Team::wake_sleepers`].
+    bed: Mutex<()>,
+    wake: Condvar,
+    /// Threads asleep on `wake`, or about to be.
+    sleepers: AtomicUsize,
 }
 
 // SAFETY: `stage` is written only by the caller while every helper waits (module docs), and
@@ -87,6 +95,9 @@ impl Team {
             done: AtomicBool::new(false),
             panicked: AtomicBool::new(false),
             caller_spins: AtomicU32::new(MAX_SPINS),
+            bed: Mutex::new(()),
+            wake: Condvar::new(),
+            sleepers: AtomicUsize::new(0),
         }
     }
 
@@ -95,20 +106,15 @@ impl Team {
         let mut seen = 0;
         let mut backoff = Backoff::new(MAX_SPINS);
         loop {
-            let epoch = loop {
-                let e = self.epoch.load(Ordering::Acquire);
-                if e != seen {
-                    break e;
-                }
-                if self.done.load(Ordering::Acquire) {
-                    return;
-                }
-                backoff.wait();
-            };
-            backoff.done();
+            let next = || self.epoch.load(Ordering::SeqCst) != seen || self.done();
+            self.wait_until(&mut backoff, next);
+            let epoch = self.epoch.load(Ordering::SeqCst);
+            if epoch == seen {
+                return; // finished, with no stage left to run
+            }
             seen = epoch;
-            // SAFETY: published before `epoch` (Release/Acquire) and not rewritten before
-            // this helper decrements `pending` below.
+            // SAFETY: published before `epoch` (SeqCst) and not rewritten before this
+            // helper decrements `pending` below.
             let (task, count) = unsafe { *self.stage.get() };
             if let (Some(task), true) = (task, index < count) {
                 // SAFETY: the caller keeps the closure alive until `pending` is zero.
@@ -117,25 +123,70 @@ impl Team {
                     self.panicked.store(true, Ordering::Release);
                 }
             }
-            self.pending.fetch_sub(1, Ordering::Release);
+            if self.pending.fetch_sub(1, Ordering::SeqCst) == 1 {
+                self.wake_sleepers();
+            }
         }
     }
 
     /// Let the helpers return from [`Team::serve`] (call once the run is over).
     pub fn finish(&self) {
-        self.done.store(true, Ordering::Release);
+        self.done.store(true, Ordering::SeqCst);
+        self.wake_sleepers();
+    }
+
+    /// Whether [`Team::finish`] was called.
+    fn done(&self) -> bool {
+        self.done.load(Ordering::SeqCst)
+    }
+
+    /// Spin until `ready` holds, and sleep once the spinning is spent.
+    fn wait_until(&self, backoff: &mut Backoff, ready: impl Fn() -> bool) {
+        while !ready() {
+            if !backoff.spin() {
+                self.sleep_until(&ready);
+                break;
+            }
+        }
+        backoff.done();
+    }
+
+    /// Sleep on the team's condition variable until `ready` holds.
+    ///
+    /// No wake-up is lost: a sleeper counts itself in `sleepers` and then tests `ready`, and
+    /// a thread that makes `ready` true first publishes that and then reads `sleepers`, all
+    /// in sequentially consistent order. So either the sleeper sees the change or the waker
+    /// sees the sleeper, and then takes the mutex, which the sleeper holds until it waits.
+    fn sleep_until(&self, ready: &impl Fn() -> bool) {
+        let mut bed = self.bed.lock().unwrap_or_else(PoisonError::into_inner);
+        self.sleepers.fetch_add(1, Ordering::SeqCst);
+        while !ready() {
+            bed = self.wake.wait(bed).unwrap_or_else(PoisonError::into_inner);
+        }
+        self.sleepers.fetch_sub(1, Ordering::SeqCst);
+    }
+
+    /// Wake every sleeper, after a change it may wait for ([`Team::sleep_until`]).
+    fn wake_sleepers(&self) {
+        if self.sleepers.load(Ordering::SeqCst) != 0 {
+            let _bed = self.bed.lock().unwrap_or_else(PoisonError::into_inner);
+            self.wake.notify_all();
+        }
     }
 }
 
-/// How one thread waits, across the stages of a run: spin first, then yield the core. The
-/// number of spins adapts. A wait that ends while spinning doubles it (up to [`MAX_SPINS`]);
-/// a wait that had to yield halves it (down to [`MIN_SPINS`]).
+/// How one thread waits, across the stages of a run: spin first, then sleep. The number of
+/// spins adapts. A wait that ends while spinning doubles it (up to [`MAX_SPINS`]); a wait
+/// that had to sleep halves it (down to [`MIN_SPINS`]).
 ///
 /// Why: when the machine has more runnable threads than cores (two runs at once, as a test
 /// harness or a user may start), the thread waited for is often off its core, and a waiter
-/// that spins a millisecond before yielding keeps it off. Measured with two `arachis pour`
-/// runs of 2 threads each at once on 2 cores (2 000 spheres, 3 000 steps): 1.6 s each with a
-/// fixed millisecond of spinning, against 0.40 s for one run alone.
+/// that spins keeps it off. Measured with two `arachis pour` runs of 2 threads each at once
+/// on 2 cores (2 000 spheres, 3 000 steps): 1.6 s each with a fixed millisecond of spinning,
+/// against 0.40 s for one run alone. Yielding the core instead of sleeping was not enough:
+/// the scheduler gives a yielding thread its core back at once when the thread it waits for
+/// sits on the other core's queue, and a test of the bench bed's 600 spheres beside another
+/// test took 227 s instead of about 20 (core/API_NOTES.md, "Threads that sleep").
 #[derive(Debug, Clone, Copy)]
 struct Backoff {
     budget: u32,
@@ -143,20 +194,21 @@ struct Backoff {
 }
 
 impl Backoff {
-    /// A waiter that may spin `budget` times before yielding.
+    /// A waiter that may spin `budget` times before sleeping.
     fn new(budget: u32) -> Self {
         Backoff { budget, spins: 0 }
     }
 
-    /// One round of waiting.
+    /// Spin once, if the budget allows: false once it is spent (the waiter should sleep).
     #[inline]
-    fn wait(&mut self) {
+    fn spin(&mut self) -> bool {
         if self.spins < self.budget {
             self.spins += 1;
             std::hint::spin_loop();
+            true
         } else {
             self.spins = self.budget + 1;
-            std::thread::yield_now();
+            false
         }
     }
 
@@ -199,16 +251,14 @@ impl Parallel for Team {
         // SAFETY: every helper is waiting for the next epoch (`pending` is zero).
         unsafe { *self.stage.get() = (Some(task), n) };
         self.pending.store(self.parts - 1, Ordering::Relaxed);
-        self.epoch.fetch_add(1, Ordering::Release);
+        self.epoch.fetch_add(1, Ordering::SeqCst);
+        self.wake_sleepers();
         run(0);
         for i in self.parts..n {
             run(i);
         }
         let mut backoff = Backoff::new(self.caller_spins.load(Ordering::Relaxed));
-        while self.pending.load(Ordering::Acquire) != 0 {
-            backoff.wait();
-        }
-        backoff.done();
+        self.wait_until(&mut backoff, || self.pending.load(Ordering::SeqCst) == 0);
         self.caller_spins.store(backoff.budget, Ordering::Relaxed);
         // SAFETY: no helper is inside the stage any more.
         unsafe { *self.stage.get() = (None, 0) };
@@ -222,26 +272,26 @@ impl Parallel for Team {
 mod tests {
     use super::*;
 
-    /// A wait that ends while spinning doubles the budget, one that had to yield halves it,
+    /// A wait that ends while spinning doubles the budget, one that had to sleep halves it,
     /// each within its bounds.
     #[test]
     fn the_spin_budget_follows_the_waits() {
         let mut b = Backoff::new(64);
-        (0..10).for_each(|_| b.wait());
+        (0..10).for_each(|_| assert!(b.spin()));
         b.done();
         assert_eq!(b.budget, 128);
-        (0..200).for_each(|_| b.wait());
+        assert_eq!((0..200).filter(|_| b.spin()).count(), 128);
         b.done();
         assert_eq!(b.budget, 64);
         for _ in 0..20 {
-            (0..100_000)
-                .take(b.budget as usize + 1)
-                .for_each(|_| b.wait());
+            (0..100_000).take(b.budget as usize + 1).for_each(|_| {
+                b.spin();
+            });
             b.done();
         }
         assert_eq!(b.budget, MIN_SPINS);
         for _ in 0..20 {
-            b.wait();
+            assert!(b.spin());
             b.done();
         }
         assert_eq!(b.budget, MAX_SPINS);
@@ -262,6 +312,35 @@ mod tests {
             team.finish();
         });
         assert_eq!(counts, [5, 4, 3, 2, 2]);
+    }
+
+    /// Helpers whose spinning is spent sleep, and every stage still wakes them: the caller
+    /// pauses between stages far longer than any spin budget (at least 10 cycles a spin),
+    /// and jobs sleep too, so both sides of the hand-over sleep in turn. A lost wake-up
+    /// would hang the test.
+    #[test]
+    fn sleeping_threads_wake_for_every_stage() {
+        let team = Team::new(3);
+        let mut counts = [0u32; 3];
+        let nap = std::time::Duration::from_millis(3);
+        std::thread::scope(|s| {
+            s.spawn(|| team.serve(1));
+            s.spawn(|| team.serve(2));
+            for stage in 0..40 {
+                if stage % 2 == 0 {
+                    std::thread::sleep(nap);
+                }
+                team.for_each(&mut counts, &|c: &mut u32| {
+                    if *c % 3 == 1 {
+                        std::thread::sleep(nap);
+                    }
+                    *c += 1;
+                });
+            }
+            team.finish();
+        });
+        assert_eq!(counts, [40; 3]);
+        assert_eq!(team.sleepers.load(Ordering::SeqCst), 0);
     }
 
     /// A job that panics on a helper makes the stage panic on the caller, not hang.
