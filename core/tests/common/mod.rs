@@ -2,6 +2,7 @@
 
 use arachis_core::owned::OwnedStorage;
 use arachis_core::prelude::*;
+use std::sync::{Arc, Mutex, PoisonError};
 
 /// Owned arenas for a world (the core never allocates; tests use its `alloc` feature).
 pub struct Owned<S: Scalar>(pub OwnedStorage<S>);
@@ -210,18 +211,44 @@ pub fn restitution_reference(m_star: f64, r_star: f64, e_star: f64, e: f64, v: f
     }
 }
 
-/// A runner that gives every part of a stage its own OS thread (scoped threads, spawned per
-/// stage): the plainest real concurrency, for the thread-count tests.
-pub struct Threads(pub usize);
+/// A runner that runs the parts of a stage on a rayon pool of as many threads: real
+/// concurrency by a thread pool that is not the host's, for the thread-count tests. The
+/// pool of each count is built once per test binary and its idle threads sleep, so tests of
+/// several counts at once do not starve each other (a runner that spawned a thread per part
+/// and stage spent most of the thread-count test starting threads).
+pub struct Threads {
+    parts: usize,
+    pool: Arc<rayon::ThreadPool>,
+}
+
+impl Threads {
+    /// A runner of `parts` parts on the test binary's pool of `parts` threads.
+    pub fn new(parts: usize) -> Self {
+        static POOLS: Mutex<Vec<(usize, Arc<rayon::ThreadPool>)>> = Mutex::new(Vec::new());
+        let mut pools = POOLS.lock().unwrap_or_else(PoisonError::into_inner);
+        let pool = match pools.iter().find(|(n, _)| *n == parts) {
+            Some((_, pool)) => pool.clone(),
+            None => {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(parts)
+                    .build()
+                    .expect("a thread pool for the thread-count tests");
+                pools.push((parts, Arc::new(pool)));
+                pools[pools.len() - 1].1.clone()
+            }
+        };
+        Threads { parts, pool }
+    }
+}
 
 impl Parallel for Threads {
     fn parts(&self) -> usize {
-        self.0
+        self.parts
     }
     fn for_each<J: Send>(&self, jobs: &mut [J], f: &(dyn Fn(&mut J) + Sync)) {
-        std::thread::scope(|s| {
+        self.pool.scope(|s| {
             for j in jobs.iter_mut() {
-                s.spawn(move || f(j));
+                s.spawn(move |_| f(j));
             }
         });
     }
@@ -232,7 +259,8 @@ pub fn run_threaded<S: Scalar>(w: &mut World<'_, S>, steps: u64, threads: usize)
     let bodies = w.bodies().len();
     let mut scratch = arachis_core::owned::OwnedThreadScratch::<S>::new(threads, bodies);
     let mut arenas = scratch.arenas();
+    let runner = Threads::new(threads);
     for _ in 0..steps {
-        w.step_with(&Threads(threads), &mut arenas).unwrap();
+        w.step_with(&runner, &mut arenas).unwrap();
     }
 }
