@@ -229,12 +229,14 @@ impl Threads {
         let pool = match pools.iter().find(|(n, _)| *n == parts) {
             Some((_, pool)) => pool.clone(),
             None => {
-                let pool = rayon::ThreadPoolBuilder::new()
-                    .num_threads(parts)
-                    .build()
-                    .expect("a thread pool for the thread-count tests");
-                pools.push((parts, Arc::new(pool)));
-                pools[pools.len() - 1].1.clone()
+                let pool = Arc::new(
+                    rayon::ThreadPoolBuilder::new()
+                        .num_threads(parts)
+                        .build()
+                        .expect("a thread pool for the thread-count tests"),
+                );
+                pools.push((parts, pool.clone()));
+                pool
             }
         };
         Threads { parts, pool }

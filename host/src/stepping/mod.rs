@@ -142,9 +142,10 @@ static CORES_IN_USE: AtomicUsize = AtomicUsize::new(0);
 
 /// The cores one threaded run holds (at least 1), given back when dropped.
 ///
-/// Why: a [`Team`]'s threads wait by spinning, so two runs at once (two tests of one test
-/// binary, say) must not put more threads on the cores than there are cores, or a helper
-/// spins while the thread it waits for has no core. A run alone gets the threads it asks
+/// Why: a [`Team`]'s threads wait by spinning before they sleep, so two runs at once (two
+/// tests of one test binary, say) should not put more threads on the cores than there are
+/// cores, or a helper spins, and then pays a wake-up, while the thread it waits for has no
+/// core. A run alone gets the threads it asks
 /// for; beside others it gets what is free, at least its own calling thread. The result does
 /// not depend on the count.
 struct Cores(usize);
