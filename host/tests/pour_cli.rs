@@ -96,6 +96,25 @@ fn small_pour_reports_every_key_and_free_fall_physics() {
         "KE {ke} J vs free fall {ke_expected} J"
     );
 
+    // The neighbour list is built at the first step, and again at the start of the step after
+    // the one in which twice the fall since the last build reached the skin
+    // (arachis_core::step::neighbour_list): every sphere falls alike, v_n·dt in step n.
+    let skin_m = RADIUS_M / f64::from(arachis_core::step::neighbour_list::SKIN_DIVISOR);
+    let (mut builds, mut drift_m, mut stale) = (0u64, 0.0, true);
+    for n in 1..=STEPS {
+        if stale {
+            builds += 1;
+            drift_m = 0.0;
+        }
+        drift_m += (V0_M_S + n as f64 * G_M_S2 * DT_S) * DT_S;
+        stale = 2.0 * drift_m >= skin_m;
+    }
+    assert!(
+        builds >= 2,
+        "the pour should outrun one skin: {builds} builds"
+    );
+    assert_eq!(v["list_builds"].as_u64(), Some(builds), "{v}");
+
     let com = number(&v, "com_height_m");
     let bed = number(&v, "bed_height_m");
     assert!(com > 0.0 && com < INSERT_TOP_M, "COM {com} m");

@@ -117,6 +117,8 @@ pub struct NeighbourList<'a, S> {
     drift: S,
     /// Skin of the current list, mm.
     skin: S,
+    /// Builds so far.
+    builds: u64,
     /// The skin is R_max / `skin_divisor` ([`SKIN_DIVISOR`] unless a test changes it).
     pub(crate) skin_divisor: i32,
 }
@@ -160,6 +162,7 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
             valid: false,
             drift: S::ZERO,
             skin: S::ZERO,
+            builds: 0,
             skin_divisor: SKIN_DIVISOR,
         })
     }
@@ -172,6 +175,11 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
     /// Entries per half: the most the list can hold.
     pub fn capacity(&self) -> usize {
         self.half
+    }
+
+    /// How many times the list has been built.
+    pub fn builds(&self) -> u64 {
+        self.builds
     }
 
     /// Mark the list stale (a sphere or wall was added).
@@ -257,6 +265,7 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
         self.listed = spheres.len();
         self.valid = true;
         self.drift = S::ZERO;
+        self.builds += 1;
         self.skin = skin;
         Ok(())
     }
@@ -553,4 +562,142 @@ fn step_in(c: u32, d: i32, dim: u32) -> Option<u32> {
 #[inline(always)]
 pub fn is_wall(key: u32) -> bool {
     key & WALL_PARTNER_FLAG != 0
+}
+
+#[cfg(test)]
+mod tests {
+    use alloc::vec::Vec;
+
+    use crate::num::{Fx, Vec3};
+    use crate::owned::OwnedStorage;
+    use crate::scenario::BenchBed;
+    use crate::wall::{WallId, WallShape};
+    use crate::world::World;
+
+    /// Steps of the test pour: falling, landing and the first settling.
+    const STEPS: u64 = 2_500;
+    /// The step from which every wall rises (the container lifts its bed), so that wall
+    /// drift counts too.
+    const LIFT_FROM: u64 = 1_500;
+    /// The walls' rise, m/s.
+    const LIFT_M_S: f64 = 0.05;
+    /// Kept steps between two brute-force searches for touching pairs.
+    const TOUCH_CHECK_EVERY: u32 = 3;
+
+    fn raw3(v: Vec3<Fx>) -> [i64; 3] {
+        [v.x.raw(), v.y.raw(), v.z.raw()]
+    }
+
+    /// |a − b|₁ in raw Q32.32 units (exact).
+    fn l1(a: [i64; 3], b: [i64; 3]) -> i128 {
+        (0..3).map(|k| (a[k] as i128 - b[k] as i128).abs()).sum()
+    }
+
+    /// A point of each wall that moves with it.
+    fn wall_points(w: &World<'_, Fx>) -> Vec<[i64; 3]> {
+        w.walls()
+            .iter()
+            .map(|wall| {
+                raw3(match &wall.shape {
+                    WallShape::Plane(p) => p.point,
+                    WallShape::Cylinder(c) => c.base,
+                    WallShape::AaBox(b) => b.min,
+                    WallShape::OrificePlate(o) => o.centre,
+                })
+            })
+            .collect()
+    }
+
+    /// Every pair of spheres of different bodies that touches is in the live list, under
+    /// its owner (the lower id).
+    fn assert_touching_pairs_listed(w: &World<'_, Fx>, step: u64) {
+        let spheres = w.spheres();
+        let live = w.list.live();
+        for (i, a) in spheres.iter().enumerate() {
+            let listed: Vec<u32> = live.entries[live.range(i)]
+                .iter()
+                .map(|e| super::key_of(e.partner))
+                .collect();
+            for (j, b) in spheres.iter().enumerate().skip(i + 1) {
+                if a.body == b.body {
+                    continue;
+                }
+                let d2: i128 = (0..3)
+                    .map(|k| {
+                        let d = raw3(b.position)[k] as i128 - raw3(a.position)[k] as i128;
+                        d * d
+                    })
+                    .sum();
+                let reach = a.radius.raw() as i128 + b.radius.raw() as i128;
+                if d2 < reach * reach {
+                    assert!(
+                        listed.contains(&(j as u32)),
+                        "step {step}: spheres {i} and {j} touch but are not listed"
+                    );
+                }
+            }
+        }
+    }
+
+    /// The list goes stale exactly when twice its drift bound reaches the skin: the bound is
+    /// the sum over the steps since the build of each step's largest sphere displacement plus
+    /// its largest wall displacement (L1 norms), measured here from the positions the test
+    /// saw, in exact integers. While the list is kept, every touching pair is in it. A pour
+    /// of 200 spheres whose container rises at the end, so that wall motion counts too.
+    /// Fails with a factor 1 for 2 (stale too late), or when the bound is not reset at a
+    /// build (stale every step).
+    #[test]
+    fn the_list_goes_stale_exactly_when_twice_its_drift_bound_reaches_the_skin() {
+        let bed = BenchBed {
+            particles: 200,
+            seed: 5,
+        };
+        let mut arenas = OwnedStorage::<Fx>::new(bed.storage_lengths());
+        let mut w = bed.build(arenas.storage()).unwrap();
+        let mut drift: i128 = 0;
+        let (mut kept, mut stale) = (0u32, 0u32);
+        for step in 0..STEPS {
+            if step == LIFT_FROM {
+                for k in 0..w.walls().len() {
+                    w.set_wall_velocity_m_s(WallId(k as u32), [0.0, 0.0, LIFT_M_S])
+                        .unwrap();
+                }
+            }
+            let before: Vec<[i64; 3]> = w.spheres().iter().map(|s| raw3(s.position)).collect();
+            let walls_before = wall_points(&w);
+            let builds = w.list.builds();
+            w.step().unwrap();
+            // A build happens at the start of a step and clears the bound.
+            if w.list.builds() != builds {
+                drift = 0;
+            }
+            let largest = |moves: &mut dyn Iterator<Item = i128>| moves.max().unwrap_or(0);
+            drift += largest(
+                &mut w
+                    .spheres()
+                    .iter()
+                    .zip(&before)
+                    .map(|(s, &b)| l1(raw3(s.position), b)),
+            );
+            drift += largest(
+                &mut walls_before
+                    .iter()
+                    .zip(wall_points(&w))
+                    .map(|(&a, b)| l1(a, b)),
+            );
+            let due = 2 * drift >= w.list.skin.raw() as i128;
+            assert_eq!(!w.list.valid, due, "step {step}");
+            if w.list.valid {
+                kept += 1;
+                // The brute-force search every few steps keeps the debug build quick.
+                if kept % TOUCH_CHECK_EVERY == 0 {
+                    assert_touching_pairs_listed(&w, step);
+                }
+            } else {
+                stale += 1;
+            }
+        }
+        // Both outcomes occurred.
+        assert!(kept > 1_000 && stale > 20, "kept {kept}, stale {stale}");
+    }
 }

@@ -155,6 +155,12 @@ impl<'a, S: Scalar> World<'a, S> {
         self.steps
     }
 
+    /// How many times the neighbour list has been built: a measure of the stepping's
+    /// overhead, which does not change the results (`step::neighbour_list`).
+    pub fn neighbour_list_builds(&self) -> u64 {
+        self.list.builds()
+    }
+
     /// Bodies in insertion order.
     pub fn bodies(&self) -> &[Body<S>] {
         &self.bodies[..self.n_bodies as usize]

@@ -4,11 +4,12 @@
 //! Prints one JSON line on stdout:
 //! `{"particles":…,"steps":…,"wall_seconds":…,"particle_steps_per_second":…,
 //! "kinetic_energy_j":…,"bed_height_m":…,"com_height_m":…,"digest":"…","scalar":…,"dt_s":…,
-//! "threads":…}`.
+//! "threads":…,"list_builds":…}`.
 //! `particle_steps_per_second` is particles × steps / wall seconds "over the whole run,
 //! insertion and settling included" (DESIGN §8); writing VTK files comes after the clock
 //! stops. `bed_height_m` is the 95th percentile of z + R, `com_height_m` the mean z (issue 2),
-//! `digest` the core's state digest as 16 hex digits. A progress bar goes to stderr when it
+//! `digest` the core's state digest as 16 hex digits, `list_builds` how often the
+//! neighbour list was built (a cost, not a result). A progress bar goes to stderr when it
 //! is a terminal. The global `--threads N` steps on N threads (default: every core); in fixed
 //! point the digest is the same for any N.
 //!
@@ -102,6 +103,7 @@ struct PourReport {
     rolling_convention: &'static str,
     friction_convention: &'static str,
     rolling_friction: bool,
+    list_builds: u64,
 }
 
 /// Runs `arachis pour`.
@@ -260,6 +262,7 @@ fn pour<S: Scalar>(args: &Args) -> anyhow::Result<(PourReport, Vec<ParticleFrame
         rolling_convention: args.rolling_convention.name(),
         friction_convention: args.friction_convention.name(),
         rolling_friction: !args.no_rolling_friction,
+        list_builds: world.neighbour_list_builds(),
     };
     Ok((report, frames))
 }
