@@ -654,7 +654,7 @@ mod tests {
         };
         let mut arenas = OwnedStorage::<Fx>::new(bed.storage_lengths());
         let mut w = bed.build(arenas.storage()).unwrap();
-        let mut drift: i128 = 0;
+        let (mut drift, mut wall_moved): (i128, i128) = (0, 0);
         let (mut kept, mut stale) = (0u32, 0u32);
         for step in 0..STEPS {
             if step == LIFT_FROM {
@@ -679,12 +679,14 @@ mod tests {
                     .zip(&before)
                     .map(|(s, &b)| l1(raw3(s.position), b)),
             );
-            drift += largest(
+            let wall_step = largest(
                 &mut walls_before
                     .iter()
                     .zip(wall_points(&w))
                     .map(|(&a, b)| l1(a, b)),
             );
+            drift += wall_step;
+            wall_moved += wall_step;
             let due = 2 * drift >= w.list.skin.raw() as i128;
             assert_eq!(!w.list.valid, due, "step {step}");
             if w.list.valid {
@@ -697,7 +699,8 @@ mod tests {
                 stale += 1;
             }
         }
-        // Both outcomes occurred.
+        // Both outcomes occurred, and the walls did move.
         assert!(kept > 1_000 && stale > 20, "kept {kept}, stale {stale}");
+        assert!(wall_moved > 0);
     }
 }
