@@ -170,6 +170,9 @@ const MOMENT_BITS: i32 = 16;
 /// … inverse moments < 2^20 1/(g·mm²), within a factor 2^4 of each other, …
 const INVERSE_MOMENT_BITS: i32 = 20;
 const ANISOTROPY_BITS: i32 = 4;
+/// … or all three zero (a kinematic clump: a machine part) with any principal moments that
+/// keep ω×Iω below 2^28 N·mm, …
+const KINEMATIC_GYRO_BITS: i32 = 28;
 /// … and sphere offsets < 2^10 mm.
 pub(super) const OFFSET_BITS: i32 = 10;
 
@@ -181,6 +184,15 @@ pub(super) const OFFSET_BITS: i32 = 10;
 /// and the capped impulse times I⁻¹ω̂ is at most `along` times the anisotropy 2^4: < 2^30.6;
 /// Tr·dt < 2^28; m·g < 2^28; the quaternion terms stay below 2. Each sphere's R·offset
 /// < 2^11 and ω × arm < 2^17 (offsets bounded by the caller).
+///
+/// A kinematic clump (every inverse moment zero, as `World::set_body_kinematic` leaves it)
+/// keeps its body-frame spin: the kick I⁻¹(τ_b − ω×Iω)·dt is zero whatever its factor, and
+/// the rolling cap does nothing (I⁻¹ω̂ = 0). Its moments can be far above 2^16 (a steel
+/// machine part), so instead of their bound the gyroscopic terms are bounded through their
+/// bit lengths, as the checked arithmetic would overflow there: with |x| < 2^(b(x)+1) and
+/// |Rᵀω| < √3·2^(b(ω)+1), Iω < 2^(b(I)+b(ω)+2.8) and ω×Iω < 2^(2b(ω)+b(I)+5.6), so
+/// 2b(ω) + b(I) + 6 ≤ [`KINEMATIC_GYRO_BITS`] keeps ω×Iω below 2^28, τ_b − ω×Iω below 2^30
+/// and (with b(I) ≤ 30 in Q32.32) b(I) + b(ω) ≤ 26, so Iω below 2^29.
 #[inline(always)]
 pub(super) fn clump_envelope<T: Envelope>(
     m: &Motion<T>,
@@ -211,10 +223,14 @@ pub(super) fn clump_envelope<T: Envelope>(
         & (k.mass >= T::ZERO)
         & k.mass.within(MASS_BITS)
         & (k.inv_mass >= T::ZERO)
-        & mag(k.moments).within(MOMENT_BITS)
-        & mag(k.inv_moments).within(INVERSE_MOMENT_BITS)
-        & (min3(k.inv_moments) > T::ZERO);
-    if !inputs_in {
+        & mag(k.inv_moments).within(INVERSE_MOMENT_BITS);
+    let kinematic = mag(k.inv_moments) == T::ZERO;
+    let spin_in = if kinematic {
+        2 * bits(mag(m.angular_velocity)) + bits(mag(k.moments)) + 6 <= KINEMATIC_GYRO_BITS
+    } else {
+        mag(k.moments).within(MOMENT_BITS) & (min3(k.inv_moments) > T::ZERO)
+    };
+    if !(inputs_in && spin_in) {
         return false;
     }
     // Bit lengths of the torque-side sum: |τ_b| < 2^(b(τ)+2), |ω×Iω| < 2^(2b(ω)+b(I)+4).
@@ -350,6 +366,116 @@ mod tests {
         assert!(
             inside > 90_000,
             "only {inside} random steps inside the envelope"
+        );
+    }
+
+    /// Kinematic clumps (inverse mass and moments zero; moments up to 2^30 g·mm², spins up
+    /// to 8 rad/ms): inside [`clump_envelope`] the fast arithmetic gives the checked one's
+    /// bits, and the checked step is free of overflow; the envelope takes every such clump of
+    /// a machine's size (moments below 2^24, spins below 0.5 rad/ms) and refuses those whose
+    /// gyroscopic terms overflow the checked arithmetic. Fails without the kinematic gyro
+    /// bound (a wrapped ω×Iω would slip through).
+    #[test]
+    fn fast_kinematic_clump_step_matches_the_checked_one_bit_for_bit() {
+        let mut s = Stream(0x2F0B_3C1D_9E8A_7765);
+        let (mut inside, mut machine_sized, mut overflowing) = (0, 0, 0);
+        for k in 0..100_000 {
+            let scale =
+                |s: &mut Stream, lo: f64, hi: f64| lo * (hi / lo).powf(0.5 * (s.next() + 1.0));
+            let q = {
+                let v = [s.next(), s.next(), s.next(), s.next()];
+                let n = (v.iter().map(|x| x * x).sum::<f64>()).sqrt();
+                Quat::from_f64(v.map(|x| x / n))
+            };
+            let moments = [0; 3].map(|_| scale(&mut s, 10.0, (1u64 << 30) as f64));
+            let (spin, sv, sf, st) = (
+                scale(&mut s, 1e-6, 8.0),
+                scale(&mut s, 1e-6, 3.0),
+                scale(&mut s, 1e-6, 100.0),
+                scale(&mut s, 1e-6, 1e4),
+            );
+            let m = Motion {
+                position: s.vec(500.0),
+                velocity: s.vec(sv),
+                angular_velocity: s.vec(spin),
+                orientation: q,
+                force: s.vec(sf),
+                torque: s.vec(st),
+                roll: Fx::from_f64(scale(&mut s, 1e-6, 1.0) * (k % 2) as f64),
+            };
+            let inertia = Inertia {
+                mass: Fx::from_f64(scale(&mut s, 1.0, 4000.0)),
+                inv_mass: Fx::ZERO,
+                moments: Vec3::new(
+                    Fx::from_f64(moments[0]),
+                    Fx::from_f64(moments[1]),
+                    Fx::from_f64(moments[2]),
+                ),
+                inv_moments: Vec3::ZERO,
+            };
+            let dt = Fx::from_f64(scale(&mut s, 5e-4, 5e-2));
+            let g = Vec3::new(Fx::ZERO, Fx::ZERO, Fx::from_f64(-9.81e-3));
+            let checked = step_body(&m, &inertia, true, dt, g);
+            let checked_ok = checked.angular_velocity.is_valid() && checked.orientation.is_valid();
+            let to = |x: Fx| FxFast::from(x);
+            let (mf, kf) = (
+                Motion {
+                    position: m.position.map(to),
+                    velocity: m.velocity.map(to),
+                    angular_velocity: m.angular_velocity.map(to),
+                    orientation: Quat {
+                        w: to(q.w),
+                        x: to(q.x),
+                        y: to(q.y),
+                        z: to(q.z),
+                    },
+                    force: m.force.map(to),
+                    torque: m.torque.map(to),
+                    roll: to(m.roll),
+                },
+                Inertia {
+                    mass: to(inertia.mass),
+                    inv_mass: to(inertia.inv_mass),
+                    moments: inertia.moments.map(to),
+                    inv_moments: inertia.inv_moments.map(to),
+                },
+            );
+            let machine = moments.iter().all(|&i| i < (1u64 << 24) as f64) && spin < 0.5;
+            if !clump_envelope(&mf, &kf, to(dt), g.map(to)) {
+                assert!(
+                    !machine,
+                    "case {k}: a machine-sized kinematic clump was refused"
+                );
+                overflowing += usize::from(!checked_ok);
+                continue;
+            }
+            inside += 1;
+            machine_sized += usize::from(machine);
+            assert!(
+                checked_ok,
+                "case {k}: the checked step overflows inside the envelope"
+            );
+            let fast = step_body(&mf, &kf, true, to(dt), g.map(to));
+            let bits = |v: Vec3<Fx>| [v.x.raw(), v.y.raw(), v.z.raw()];
+            let bits_f = |v: Vec3<FxFast>| [v.x.raw(), v.y.raw(), v.z.raw()];
+            assert_eq!(bits(checked.position), bits_f(fast.position), "case {k}");
+            assert_eq!(bits(checked.velocity), bits_f(fast.velocity), "case {k}");
+            assert_eq!(
+                bits(checked.angular_velocity),
+                bits_f(fast.angular_velocity),
+                "case {k}"
+            );
+            let (o, of) = (checked.orientation, fast.orientation);
+            assert_eq!(
+                [o.w.raw(), o.x.raw(), o.y.raw(), o.z.raw()],
+                [of.w.raw(), of.x.raw(), of.y.raw(), of.z.raw()],
+                "case {k}"
+            );
+            assert_eq!(bits(checked.force), bits_f(fast.force), "case {k}");
+        }
+        assert!(
+            inside > 30_000 && machine_sized > 5_000 && overflowing > 500,
+            "inside {inside}, machine-sized {machine_sized}, refused and overflowing {overflowing}"
         );
     }
 }
