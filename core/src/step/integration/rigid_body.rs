@@ -255,6 +255,35 @@ mod tests {
             self.0 ^= self.0 << 17;
             (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
         }
+        /// A value between `lo` and `hi` (> 0), uniform in its logarithm.
+        fn log_uniform(&mut self, lo: f64, hi: f64) -> f64 {
+            lo * (hi / lo).powf(0.5 * (self.next() + 1.0))
+        }
+        /// A random unit quaternion.
+        fn unit_quat(&mut self) -> Quat<Fx> {
+            let v = [self.next(), self.next(), self.next(), self.next()];
+            let n = (v.iter().map(|x| x * x).sum::<f64>()).sqrt();
+            Quat::from_f64(v.map(|x| x / n))
+        }
+        /// A motion at orientation `q`: position within ±`position_mm`, velocity, spin,
+        /// force and torque within ± the four `scales`, rolling torque `roll`.
+        fn motion(
+            &mut self,
+            q: Quat<Fx>,
+            position_mm: f64,
+            scales: [f64; 4],
+            roll: f64,
+        ) -> Motion<Fx> {
+            Motion {
+                position: self.vec(position_mm),
+                velocity: self.vec(scales[0]),
+                angular_velocity: self.vec(scales[1]),
+                orientation: q,
+                force: self.vec(scales[2]),
+                torque: self.vec(scales[3]),
+                roll: Fx::from_f64(roll),
+            }
+        }
         fn vec(&mut self, scale: f64) -> Vec3<Fx> {
             Vec3::new(
                 Fx::from_f64(scale * self.next()),
@@ -264,6 +293,54 @@ mod tests {
         }
     }
 
+    /// The same motion and inertia in the fast arithmetic.
+    fn fast_copy(m: &Motion<Fx>, k: &Inertia<Fx>) -> (Motion<FxFast>, Inertia<FxFast>) {
+        let to = |x: Fx| FxFast::from(x);
+        let q = m.orientation;
+        (
+            Motion {
+                position: m.position.map(to),
+                velocity: m.velocity.map(to),
+                angular_velocity: m.angular_velocity.map(to),
+                orientation: Quat {
+                    w: to(q.w),
+                    x: to(q.x),
+                    y: to(q.y),
+                    z: to(q.z),
+                },
+                force: m.force.map(to),
+                torque: m.torque.map(to),
+                roll: to(m.roll),
+            },
+            Inertia {
+                mass: to(k.mass),
+                inv_mass: to(k.inv_mass),
+                moments: k.moments.map(to),
+                inv_moments: k.inv_moments.map(to),
+            },
+        )
+    }
+
+    /// Every output of the checked step equals the fast step's, raw (case `k` in messages).
+    fn assert_same_bits(checked: &Motion<Fx>, fast: &Motion<FxFast>, k: usize) {
+        let bits = |v: Vec3<Fx>| [v.x.raw(), v.y.raw(), v.z.raw()];
+        let bits_f = |v: Vec3<FxFast>| [v.x.raw(), v.y.raw(), v.z.raw()];
+        assert_eq!(bits(checked.position), bits_f(fast.position), "case {k}");
+        assert_eq!(bits(checked.velocity), bits_f(fast.velocity), "case {k}");
+        assert_eq!(
+            bits(checked.angular_velocity),
+            bits_f(fast.angular_velocity),
+            "case {k}"
+        );
+        let (o, of) = (checked.orientation, fast.orientation);
+        assert_eq!(
+            [o.w.raw(), o.x.raw(), o.y.raw(), o.z.raw()],
+            [of.w.raw(), of.x.raw(), of.y.raw(), of.z.raw()],
+            "case {k}"
+        );
+        assert_eq!(bits(checked.force), bits_f(fast.force), "case {k}");
+    }
+
     /// Inside [`clump_envelope`] the fast arithmetic gives the checked one's bits: 100 000
     /// random clump steps (pod-like and far from it), every output compared raw.
     #[test]
@@ -271,35 +348,21 @@ mod tests {
         let mut s = Stream(0x853C_49E6_748F_EA9B);
         let mut inside = 0;
         for k in 0..100_000 {
-            let scale =
-                |s: &mut Stream, lo: f64, hi: f64| lo * (hi / lo).powf(0.5 * (s.next() + 1.0));
-            let q = {
-                let v = [s.next(), s.next(), s.next(), s.next()];
-                let n = (v.iter().map(|x| x * x).sum::<f64>()).sqrt();
-                Quat::from_f64(v.map(|x| x / n))
-            };
+            let q = s.unit_quat();
             let moments = Vec3::new(
-                scale(&mut s, 10.0, 400.0),
-                scale(&mut s, 10.0, 400.0),
-                scale(&mut s, 10.0, 400.0),
+                s.log_uniform(10.0, 400.0),
+                s.log_uniform(10.0, 400.0),
+                s.log_uniform(10.0, 400.0),
             );
-            let mass = scale(&mut s, 0.1, 5.0);
+            let mass = s.log_uniform(0.1, 5.0);
             let (sv, sw, sf, st, sr) = (
-                scale(&mut s, 1e-6, 3.0),
-                scale(&mut s, 1e-6, 3.0),
-                scale(&mut s, 1e-6, 10.0),
-                scale(&mut s, 1e-6, 30.0),
-                scale(&mut s, 1e-6, 1.0),
+                s.log_uniform(1e-6, 3.0),
+                s.log_uniform(1e-6, 3.0),
+                s.log_uniform(1e-6, 10.0),
+                s.log_uniform(1e-6, 30.0),
+                s.log_uniform(1e-6, 1.0),
             );
-            let m = Motion {
-                position: s.vec(200.0),
-                velocity: s.vec(sv),
-                angular_velocity: s.vec(sw),
-                orientation: q,
-                force: s.vec(sf),
-                torque: s.vec(st),
-                roll: Fx::from_f64(sr * (k % 2) as f64),
-            };
+            let m = s.motion(q, 200.0, [sv, sw, sf, st], sr * (k % 2) as f64);
             let inertia = Inertia {
                 mass: Fx::from_f64(mass),
                 inv_mass: Fx::from_f64(1.0 / mass),
@@ -314,54 +377,17 @@ mod tests {
                     Fx::from_f64(1.0 / moments.z),
                 ),
             };
-            let dt = Fx::from_f64(scale(&mut s, 5e-4, 5e-2));
+            let dt = Fx::from_f64(s.log_uniform(5e-4, 5e-2));
             let g = Vec3::new(Fx::ZERO, Fx::ZERO, Fx::from_f64(-9.81e-3));
             let to = |x: Fx| FxFast::from(x);
-            let (mf, kf) = (
-                Motion {
-                    position: m.position.map(to),
-                    velocity: m.velocity.map(to),
-                    angular_velocity: m.angular_velocity.map(to),
-                    orientation: Quat {
-                        w: to(q.w),
-                        x: to(q.x),
-                        y: to(q.y),
-                        z: to(q.z),
-                    },
-                    force: m.force.map(to),
-                    torque: m.torque.map(to),
-                    roll: to(m.roll),
-                },
-                Inertia {
-                    mass: to(inertia.mass),
-                    inv_mass: to(inertia.inv_mass),
-                    moments: inertia.moments.map(to),
-                    inv_moments: inertia.inv_moments.map(to),
-                },
-            );
+            let (mf, kf) = fast_copy(&m, &inertia);
             if !clump_envelope(&mf, &kf, to(dt), g.map(to)) {
                 continue;
             }
             inside += 1;
             let checked = step_body(&m, &inertia, true, dt, g);
             let fast = step_body(&mf, &kf, true, to(dt), g.map(to));
-            let bits = |v: Vec3<Fx>| [v.x.raw(), v.y.raw(), v.z.raw()];
-            let bits_f = |v: Vec3<FxFast>| [v.x.raw(), v.y.raw(), v.z.raw()];
-            assert_eq!(bits(checked.position), bits_f(fast.position), "case {k}");
-            assert_eq!(bits(checked.velocity), bits_f(fast.velocity), "case {k}");
-            assert_eq!(
-                bits(checked.angular_velocity),
-                bits_f(fast.angular_velocity),
-                "case {k}"
-            );
-            let o = checked.orientation;
-            let of = fast.orientation;
-            assert_eq!(
-                [o.w.raw(), o.x.raw(), o.y.raw(), o.z.raw()],
-                [of.w.raw(), of.x.raw(), of.y.raw(), of.z.raw()],
-                "case {k}"
-            );
-            assert_eq!(bits(checked.force), bits_f(fast.force), "case {k}");
+            assert_same_bits(&checked, &fast, k);
         }
         assert!(
             inside > 90_000,
@@ -380,31 +406,18 @@ mod tests {
         let mut s = Stream(0x2F0B_3C1D_9E8A_7765);
         let (mut inside, mut machine_sized, mut overflowing) = (0, 0, 0);
         for k in 0..100_000 {
-            let scale =
-                |s: &mut Stream, lo: f64, hi: f64| lo * (hi / lo).powf(0.5 * (s.next() + 1.0));
-            let q = {
-                let v = [s.next(), s.next(), s.next(), s.next()];
-                let n = (v.iter().map(|x| x * x).sum::<f64>()).sqrt();
-                Quat::from_f64(v.map(|x| x / n))
-            };
-            let moments = [0; 3].map(|_| scale(&mut s, 10.0, (1u64 << 30) as f64));
+            let q = s.unit_quat();
+            let moments = [0; 3].map(|_| s.log_uniform(10.0, (1u64 << 30) as f64));
             let (spin, sv, sf, st) = (
-                scale(&mut s, 1e-6, 8.0),
-                scale(&mut s, 1e-6, 3.0),
-                scale(&mut s, 1e-6, 100.0),
-                scale(&mut s, 1e-6, 1e4),
+                s.log_uniform(1e-6, 8.0),
+                s.log_uniform(1e-6, 3.0),
+                s.log_uniform(1e-6, 100.0),
+                s.log_uniform(1e-6, 1e4),
             );
-            let m = Motion {
-                position: s.vec(500.0),
-                velocity: s.vec(sv),
-                angular_velocity: s.vec(spin),
-                orientation: q,
-                force: s.vec(sf),
-                torque: s.vec(st),
-                roll: Fx::from_f64(scale(&mut s, 1e-6, 1.0) * (k % 2) as f64),
-            };
+            let roll = s.log_uniform(1e-6, 1.0) * (k % 2) as f64;
+            let m = s.motion(q, 500.0, [sv, spin, sf, st], roll);
             let inertia = Inertia {
-                mass: Fx::from_f64(scale(&mut s, 1.0, 4000.0)),
+                mass: Fx::from_f64(s.log_uniform(1.0, 4000.0)),
                 inv_mass: Fx::ZERO,
                 moments: Vec3::new(
                     Fx::from_f64(moments[0]),
@@ -413,33 +426,12 @@ mod tests {
                 ),
                 inv_moments: Vec3::ZERO,
             };
-            let dt = Fx::from_f64(scale(&mut s, 5e-4, 5e-2));
+            let dt = Fx::from_f64(s.log_uniform(5e-4, 5e-2));
             let g = Vec3::new(Fx::ZERO, Fx::ZERO, Fx::from_f64(-9.81e-3));
             let checked = step_body(&m, &inertia, true, dt, g);
             let checked_ok = checked.angular_velocity.is_valid() && checked.orientation.is_valid();
             let to = |x: Fx| FxFast::from(x);
-            let (mf, kf) = (
-                Motion {
-                    position: m.position.map(to),
-                    velocity: m.velocity.map(to),
-                    angular_velocity: m.angular_velocity.map(to),
-                    orientation: Quat {
-                        w: to(q.w),
-                        x: to(q.x),
-                        y: to(q.y),
-                        z: to(q.z),
-                    },
-                    force: m.force.map(to),
-                    torque: m.torque.map(to),
-                    roll: to(m.roll),
-                },
-                Inertia {
-                    mass: to(inertia.mass),
-                    inv_mass: to(inertia.inv_mass),
-                    moments: inertia.moments.map(to),
-                    inv_moments: inertia.inv_moments.map(to),
-                },
-            );
+            let (mf, kf) = fast_copy(&m, &inertia);
             let machine = moments.iter().all(|&i| i < (1u64 << 24) as f64) && spin < 0.5;
             if !clump_envelope(&mf, &kf, to(dt), g.map(to)) {
                 assert!(
@@ -456,22 +448,7 @@ mod tests {
                 "case {k}: the checked step overflows inside the envelope"
             );
             let fast = step_body(&mf, &kf, true, to(dt), g.map(to));
-            let bits = |v: Vec3<Fx>| [v.x.raw(), v.y.raw(), v.z.raw()];
-            let bits_f = |v: Vec3<FxFast>| [v.x.raw(), v.y.raw(), v.z.raw()];
-            assert_eq!(bits(checked.position), bits_f(fast.position), "case {k}");
-            assert_eq!(bits(checked.velocity), bits_f(fast.velocity), "case {k}");
-            assert_eq!(
-                bits(checked.angular_velocity),
-                bits_f(fast.angular_velocity),
-                "case {k}"
-            );
-            let (o, of) = (checked.orientation, fast.orientation);
-            assert_eq!(
-                [o.w.raw(), o.x.raw(), o.y.raw(), o.z.raw()],
-                [of.w.raw(), of.x.raw(), of.y.raw(), of.z.raw()],
-                "case {k}"
-            );
-            assert_eq!(bits(checked.force), bits_f(fast.force), "case {k}");
+            assert_same_bits(&checked, &fast, k);
         }
         assert!(
             inside > 30_000 && machine_sized > 5_000 && overflowing > 500,
