@@ -618,13 +618,15 @@ mod tests {
                 .iter()
                 .map(|e| super::key_of(e.partner))
                 .collect();
+            let pa = raw3(a.position);
             for (j, b) in spheres.iter().enumerate().skip(i + 1) {
                 if a.body == b.body {
                     continue;
                 }
+                let pb = raw3(b.position);
                 let d2: i128 = (0..3)
                     .map(|k| {
-                        let d = raw3(b.position)[k] as i128 - raw3(a.position)[k] as i128;
+                        let d = pb[k] as i128 - pa[k] as i128;
                         d * d
                     })
                     .sum();
@@ -671,20 +673,20 @@ mod tests {
             if w.list.builds() != builds {
                 drift = 0;
             }
-            let largest = |moves: &mut dyn Iterator<Item = i128>| moves.max().unwrap_or(0);
-            drift += largest(
-                &mut w
-                    .spheres()
-                    .iter()
-                    .zip(&before)
-                    .map(|(s, &b)| l1(raw3(s.position), b)),
-            );
-            let wall_step = largest(
-                &mut walls_before
-                    .iter()
-                    .zip(wall_points(&w))
-                    .map(|(&a, b)| l1(a, b)),
-            );
+            let sphere_step = w
+                .spheres()
+                .iter()
+                .zip(&before)
+                .map(|(s, &b)| l1(raw3(s.position), b))
+                .max()
+                .unwrap_or(0);
+            let wall_step = walls_before
+                .iter()
+                .zip(wall_points(&w))
+                .map(|(&a, b)| l1(a, b))
+                .max()
+                .unwrap_or(0);
+            drift += sphere_step;
             drift += wall_step;
             wall_moved += wall_step;
             let due = 2 * drift >= w.list.skin.raw() as i128;

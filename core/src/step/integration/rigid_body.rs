@@ -224,8 +224,8 @@ pub(super) fn clump_envelope<T: Envelope>(
         & k.mass.within(MASS_BITS)
         & (k.inv_mass >= T::ZERO)
         & mag(k.inv_moments).within(INVERSE_MOMENT_BITS);
-    let kinematic = mag(k.inv_moments) == T::ZERO;
-    let spin_in = if kinematic {
+    // Every inverse moment zero: a kinematic clump (see above).
+    let spin_in = if mag(k.inv_moments) == T::ZERO {
         2 * bits(mag(m.angular_velocity)) + bits(mag(k.moments)) + 6 <= KINEMATIC_GYRO_BITS
     } else {
         mag(k.moments).within(MOMENT_BITS) & (min3(k.inv_moments) > T::ZERO)
