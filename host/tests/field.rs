@@ -168,6 +168,12 @@ fn a_bare_bed_settles_until_its_floor_carries_the_grains_weight() {
     assert!((ratio - 1.0).abs() < 0.02, "floor/weight = {ratio}");
 }
 
+/// The shipped field's digest after 40 steps (seed 1), as the core gave it before its stages
+/// hinted memory loads (05f0b85: `arachis field testdata/peanut-plant/field-huayu.toml
+/// --steps 40`). The field's 34 612 sphere records outgrow the second-level cache, so its
+/// steps take the hinted loads (`arachis_core::step::prefetch`), which must change no bit.
+const SHIPPED_DIGEST_40_STEPS: u64 = 0x1f54_e69f_92bc_78c7;
+
 #[test]
 fn the_field_steps_with_the_same_bits_on_one_and_two_threads() {
     let spec = shipped();
@@ -175,6 +181,11 @@ fn the_field_steps_with_the_same_bits_on_one_and_two_threads() {
     let one = step(&spec, &field, 40, 1);
     let two = step(&spec, &field, 40, 2);
     assert_eq!(one.0, two.0, "digest on 1 and 2 threads");
+    assert_eq!(
+        one.0, SHIPPED_DIGEST_40_STEPS,
+        "digest {:016x} after 40 steps, against the one before the memory hints",
+        one.0
+    );
     assert_eq!(
         one.1,
         field.bond_count(),

@@ -11,6 +11,7 @@
 //! order ([`remove_broken`]), so the log and the compacted table do not depend on the split.
 
 use super::parts::widen;
+use super::prefetch::{prefetch_lines, worth_hinting};
 use crate::body::{Body, BodyForce, Sphere};
 use crate::bond::breakage::Stresses;
 use crate::bond::kinematics::update;
@@ -22,6 +23,10 @@ use core::ops::Range;
 /// Fewest bonds worth a part of their own: below this a thread's wake-up costs more than the
 /// bonds it would load (a bond update is about 0.1–0.3 µs).
 pub const MIN_BONDS_PER_PART: usize = 512;
+
+/// How many bonds ahead the stage asks for the two spheres' records (their positions), so
+/// that the loads overlap the bonds in between ([`super::prefetch`]).
+const PREFETCH_BONDS_AHEAD: usize = 4;
 
 /// The clock of the step, for the bond stage.
 pub(crate) struct Clock<S> {
@@ -81,7 +86,16 @@ impl<S: Scalar> BondPart<'_, S> {
         touched: &mut Range<usize>,
         breaks: &mut u32,
     ) -> Result<(), StepError> {
-        for bond in self.bonds.iter_mut() {
+        let hint = worth_hinting(shared.spheres);
+        for k in 0..self.bonds.len() {
+            if let Some(ahead) = self.bonds.get(k + PREFETCH_BONDS_AHEAD).filter(|_| hint) {
+                for s in [ahead.sphere_a, ahead.sphere_b] {
+                    if let Some(s) = shared.spheres.get(s as usize) {
+                        prefetch_lines(s, 1);
+                    }
+                }
+            }
+            let bond = &mut self.bonds[k];
             let p = shared.sets[bond.set as usize];
             let sa = shared.spheres[bond.sphere_a as usize];
             let sb = shared.spheres[bond.sphere_b as usize];

@@ -24,4 +24,5 @@ pub mod integration;
 pub mod narrow_phase;
 pub mod neighbour_list;
 pub mod parts;
+pub mod prefetch;
 pub mod wall_motion;

@@ -24,6 +24,7 @@
 
 use super::neighbour_list::{is_wall, key_of, LIVE_FLAG};
 use super::parts::{widen, PairTable};
+use super::prefetch::{prefetch_lines, worth_hinting};
 use crate::body::{Body, BodyForce, Sphere};
 use crate::bond::Bond;
 use crate::contact::fused::{evaluate_fast, FusedContact, FusedLoad, Geometry};
@@ -87,8 +88,12 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
     fn scan(&mut self, sh: &Shared<'_, S>) -> Result<(), StepError> {
         let base = sh.offsets[self.spheres.start] as usize;
         let with_effects = !self.effects.is_empty();
+        let hint = worth_hinting(sh.spheres);
         for i in self.spheres.clone() {
             let range = sh.offsets[i] as usize - base..sh.offsets[i + 1] as usize - base;
+            if hint {
+                self.prefetch_partners(sh, i + PREFETCH_OWNERS_AHEAD, base);
+            }
             let si = &sh.spheres[i];
             // The fast paths sum the owner's loads here and add them to its body once.
             let mut owner = BodyForce::<S>::default();
@@ -295,6 +300,22 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         Fast::Done
     }
 
+    /// Start loading the partner spheres of owner `i`'s entries (if the part has the owner):
+    /// their position and motion snapshot, the records' first two cache lines. One test of
+    /// the hint per owner, not per entry, keeps the cost off worlds that do not use it.
+    #[inline(always)]
+    fn prefetch_partners(&self, sh: &Shared<'_, S>, i: usize, base: usize) {
+        if i >= self.spheres.end {
+            return;
+        }
+        let entries = sh.offsets[i] as usize - base..sh.offsets[i + 1] as usize - base;
+        for entry in &self.entries[entries] {
+            if let Some(s) = sh.spheres.get(key_of(entry.partner) as usize) {
+                prefetch_lines(s, SPHERE_LINES_READ);
+            }
+        }
+    }
+
     /// Store the history and live flag of entry `e`.
     #[inline(always)]
     fn write(&mut self, e: usize, key: u32, state: &ContactState<S>, live: bool) {
@@ -380,6 +401,15 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
 /// The fast path's sum of radii stays below 2^15 mm, so that |d|² and rs² (< 3·2^30 mm²)
 /// cannot leave the Q32.32 range.
 const REACH_SQUARE_BITS: i32 = 15;
+
+/// How many owners ahead the scan asks for the partner spheres' records: far enough for the
+/// loads to arrive while the owner in between is evaluated (an owner has about three
+/// entries in a settled bed).
+const PREFETCH_OWNERS_AHEAD: usize = 1;
+
+/// Cache lines of a sphere record the contact scan reads (position and radius, then the
+/// motion snapshot; [`Sphere`]'s layout).
+const SPHERE_LINES_READ: usize = 2;
 
 /// What the fast path did with an entry.
 enum Fast {

@@ -34,6 +34,7 @@
 
 use super::broad_phase::bin_spheres;
 use super::parts::{Parallel, Serial, MAX_PARTS};
+use super::prefetch::{prefetch_lines, worth_hinting};
 use crate::body::arena::index_len;
 use crate::body::Sphere;
 use crate::contact::history::wall_key;
@@ -52,6 +53,11 @@ pub const LIVE_FLAG: u32 = 0x4000_0000;
 /// fastest of R/2 … R/16 on the DESIGN §8 bed and on the quick pod pile (core/API_NOTES.md,
 /// 2026-11-27); in fixed point the results do not depend on it.
 pub const SKIN_DIVISOR: i32 = 4;
+
+/// How many candidates of a row ahead the rebuild asks for the sphere's record (its first
+/// cache line: position, radius, body), so that the load overlaps the distance tests in
+/// between ([`super::prefetch`]).
+const PREFETCH_CANDIDATES_AHEAD: usize = 4;
 
 /// Below a reach of 2^15 mm the rebuild squares distances in the unchecked arithmetic
 /// (|d|² < 3·2^30 mm² stays in range).
@@ -429,6 +435,7 @@ impl<S: Scalar> RebuildPart<'_, S> {
 
     fn scan(&mut self, sc: &Scan<'_, S>) -> Result<(), StepError> {
         let (spheres, grid, cells) = (sc.spheres, &sc.grid, sc.cells);
+        let hint = worth_hinting(spheres);
         for (k, i) in self.owners.clone().enumerate() {
             let si = &spheres[i];
             let reach_i = si.radius + sc.skin;
@@ -446,7 +453,16 @@ impl<S: Scalar> RebuildPart<'_, S> {
                 let row = (z * grid.dims[1] + y) * grid.dims[0];
                 let run = cells[(row + x_lo) as usize] as usize
                     ..cells[(row + x_hi) as usize + 1] as usize;
-                for &j in &sc.sorted[run] {
+                let candidates = &sc.sorted[run];
+                for (c, &j) in candidates.iter().enumerate() {
+                    if let Some(&ahead) = candidates
+                        .get(c + PREFETCH_CANDIDATES_AHEAD)
+                        .filter(|_| hint)
+                    {
+                        if let Some(s) = spheres.get(ahead as usize) {
+                            prefetch_lines(s, 1);
+                        }
+                    }
                     // The owner keeps only partners above it, and none of its own body (a
                     // clump's own spheres crowd its neighbourhood: skip them first).
                     let sj = &spheres[j as usize];
