@@ -11,7 +11,7 @@
 //! order ([`remove_broken`]), so the log and the compacted table do not depend on the split.
 
 use super::parts::widen;
-use super::prefetch::{prefetch_lines, worth_hinting};
+use super::prefetch::{prefetch_record, worth_hinting};
 use crate::body::{Body, BodyForce, Sphere};
 use crate::bond::breakage::Stresses;
 use crate::bond::kinematics::update;
@@ -89,11 +89,8 @@ impl<S: Scalar> BondPart<'_, S> {
         let hint = worth_hinting(shared.spheres);
         for k in 0..self.bonds.len() {
             if let Some(ahead) = self.bonds.get(k + PREFETCH_BONDS_AHEAD).filter(|_| hint) {
-                for s in [ahead.sphere_a, ahead.sphere_b] {
-                    if let Some(s) = shared.spheres.get(s as usize) {
-                        prefetch_lines(s, 1);
-                    }
-                }
+                prefetch_record(shared.spheres, ahead.sphere_a as usize, 1);
+                prefetch_record(shared.spheres, ahead.sphere_b as usize, 1);
             }
             let bond = &mut self.bonds[k];
             let p = shared.sets[bond.set as usize];

@@ -24,7 +24,7 @@
 
 use super::neighbour_list::{is_wall, key_of, LIVE_FLAG};
 use super::parts::{widen, PairTable};
-use super::prefetch::{prefetch_lines, worth_hinting};
+use super::prefetch::{prefetch_record, worth_hinting};
 use crate::body::{Body, BodyForce, Sphere};
 use crate::bond::Bond;
 use crate::contact::fused::{evaluate_fast, FusedContact, FusedLoad, Geometry};
@@ -310,9 +310,11 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         }
         let entries = sh.offsets[i] as usize - base..sh.offsets[i + 1] as usize - base;
         for entry in &self.entries[entries] {
-            if let Some(s) = sh.spheres.get(key_of(entry.partner) as usize) {
-                prefetch_lines(s, SPHERE_LINES_READ);
-            }
+            prefetch_record(
+                sh.spheres,
+                key_of(entry.partner) as usize,
+                SPHERE_LINES_READ,
+            );
         }
     }
 

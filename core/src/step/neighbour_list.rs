@@ -34,7 +34,7 @@
 
 use super::broad_phase::bin_spheres;
 use super::parts::{Parallel, Serial, MAX_PARTS};
-use super::prefetch::{prefetch_lines, worth_hinting};
+use super::prefetch::{prefetch_record, worth_hinting};
 use crate::body::arena::index_len;
 use crate::body::Sphere;
 use crate::contact::history::wall_key;
@@ -459,9 +459,7 @@ impl<S: Scalar> RebuildPart<'_, S> {
                         .get(c + PREFETCH_CANDIDATES_AHEAD)
                         .filter(|_| hint)
                     {
-                        if let Some(s) = spheres.get(ahead as usize) {
-                            prefetch_lines(s, 1);
-                        }
+                        prefetch_record(spheres, ahead as usize, 1);
                     }
                     // The owner keeps only partners above it, and none of its own body (a
                     // clump's own spheres crowd its neighbourhood: skip them first).

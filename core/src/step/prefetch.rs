@@ -5,15 +5,16 @@
 //!
 //! Why: the contact scan reads each entry's partner sphere record (two cache lines) in the
 //! order of the list, which is not the order of memory. Once the records outgrow the
-//! processor's second-level cache (about 10 000 spheres here), each such read waits for the
-//! third level; perf put about half of the shipped field's scan samples on that load
+//! processor's second-level cache (1 MiB here: about 5 460 sphere records), each such read
+//! waits for the third level; perf put about half of the shipped field's scan samples on that load
 //! (`core/API_NOTES.md`).
 //!
 //! ```
-//! use arachis_core::step::prefetch::{prefetch_lines, worth_hinting};
+//! use arachis_core::step::prefetch::{prefetch_record, worth_hinting};
 //! let records = [0u64; 32];
 //! assert!(!worth_hinting(&records)); // 256 bytes stay in cache without hints
-//! prefetch_lines(&records[8], 2); // a hint only: nothing to observe
+//! prefetch_record(&records, 8, 2); // a hint only: nothing to observe
+//! prefetch_record(&records, 99, 1); // outside the records: nothing at all
 //! assert_eq!(records[8], 0);
 //! ```
 
@@ -23,8 +24,8 @@ pub const CACHE_LINE_BYTES: usize = 64;
 /// Bytes of one core's second-level cache on the machine the hints were measured on (Intel
 /// Xeon, 1 MiB a core). Records that fit in it are read from it without a hint, and a hint
 /// then costs its instructions for nothing: the bench bed (2 000 spheres, 384 KiB of sphere
-/// records) ran no faster with hints, the shipped field (34 612 spheres, 6.6 MiB) 13 %
-/// faster (core/API_NOTES.md).
+/// records) ran no faster with hints, the shipped field (34 612 spheres, 6.6 MiB) in 0.84×
+/// the time (core/API_NOTES.md).
 pub const SECOND_LEVEL_CACHE_BYTES: usize = 1 << 20;
 
 /// Whether records such as `records` are worth hinting: when they outgrow
@@ -32,6 +33,15 @@ pub const SECOND_LEVEL_CACHE_BYTES: usize = 1 << 20;
 #[inline(always)]
 pub fn worth_hinting<T>(records: &[T]) -> bool {
     core::mem::size_of_val(records) > SECOND_LEVEL_CACHE_BYTES
+}
+
+/// Hint that the first `lines` cache lines of `records[index]` will be read soon; nothing
+/// when `index` lies outside `records` (a wall key in a neighbour entry, the end of a run).
+#[inline(always)]
+pub fn prefetch_record<T>(records: &[T], index: usize, lines: usize) {
+    if let Some(r) = records.get(index) {
+        prefetch_lines(r, lines);
+    }
 }
 
 /// Hint that the `lines` cache lines starting at `at` will be read soon.
