@@ -8,20 +8,40 @@
 # The cluster executor's tests (host/tests/slurm_cluster.rs) need a one-node Slurm cluster:
 # it is started here (scripts/slurm-local.sh installs slurm-wlm and munge when missing) and
 # stopped at the end if this script started it. Where it cannot start, this says so and why,
-# and those tests skip.
+# and those tests skip; where it is up, they must run (`ARACHIS_REQUIRE_SLURM=1`).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 if scripts/slurm-local.sh status >/dev/null 2>&1; then
-    export "$(scripts/slurm-local.sh env)"
+    export "$(scripts/slurm-local.sh env)" ARACHIS_REQUIRE_SLURM=1
 elif conf=$(scripts/slurm-local.sh start); then
-    export "$conf"
+    export "$conf" ARACHIS_REQUIRE_SLURM=1
     trap 'scripts/slurm-local.sh stop' EXIT
 else
     echo "NOTE: the Slurm tests (host/tests/slurm_cluster.rs) are SKIPPED: the local cluster" \
         "did not start (the reason is printed above)" >&2
 fi
-cargo test --release --workspace
+# The Slurm tests spend about 100 s waiting for the scheduler and use a few CPU-seconds of
+# their own: run inside the harness they hold one of its slots (and, one campaign at a time,
+# often both) while the cores idle. So they run from the host's scenario binary beside the
+# rest; its path is read from cargo's record of the build.
+scenarios=$(cargo test --release --workspace --no-run --message-format=json-render-diagnostics |
+    grep '"src_path":"[^"]*/host/tests/scenarios.rs"' |
+    grep -o '"executable":"[^"]*"' | cut -d'"' -f4)
+[ -x "$scenarios" ] || { echo "test-all.sh: the host's scenario binary was not built" >&2; exit 1; }
+slurm_log=$(mktemp)
+(cd host && "$scenarios" slurm_cluster:: >"$slurm_log" 2>&1) &
+slurm_tests=$!
+if ! cargo test --release --workspace -- --skip slurm_cluster::; then
+    wait "$slurm_tests" || true
+    exit 1
+fi
+slurm_status=0
+wait "$slurm_tests" || slurm_status=$?
+cat "$slurm_log"
+rm -f "$slurm_log"
+[ "$slurm_status" -eq 0 ] || { echo "the Slurm tests failed (above)" >&2; exit 1; }
+
 cargo test -p arachis-core
 cargo test --release -p arachis-core --features float-estimate --lib
 cargo test --release -p arachis-core --features float-estimate --test scenarios digest_scenarios::

@@ -8,8 +8,8 @@
 //!   fails every time stops the campaign with a message naming the run and its log.
 //!
 //! When the cluster cannot be started here (no root, no package archive), each test says so
-//! on stderr and passes without running, unless `ARACHIS_REQUIRE_SLURM=1` (set by `.ci/run`
-//! where the cluster starts), which makes that a failure.
+//! on stderr and passes without running, unless `ARACHIS_REQUIRE_SLURM=1` (set by
+//! `scripts/test-all.sh` once the cluster is up), which makes that a failure.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
