@@ -32,14 +32,14 @@ scenarios=$(cargo test --release --workspace --no-run --message-format=json-rend
 slurm_log=$(mktemp)
 (cd host && "$scenarios" slurm_cluster:: >"$slurm_log" 2>&1) &
 slurm_tests=$!
-if ! cargo test --release --workspace -- --skip slurm_cluster::; then
-    wait "$slurm_tests" || true
-    exit 1
-fi
+rest_status=0
+cargo test --release --workspace -- --skip slurm_cluster:: || rest_status=$?
 slurm_status=0
 wait "$slurm_tests" || slurm_status=$?
+echo "--- the Slurm tests, run beside the rest ---"
 cat "$slurm_log"
 rm -f "$slurm_log"
+[ "$rest_status" -eq 0 ] || exit "$rest_status"
 [ "$slurm_status" -eq 0 ] || { echo "the Slurm tests failed (above)" >&2; exit 1; }
 
 cargo test -p arachis-core
