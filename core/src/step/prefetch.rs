@@ -46,7 +46,7 @@ pub fn prefetch_record<T>(records: &[T], index: usize, lines: usize) {
 
 /// Hint that the `lines` cache lines starting at `at` will be read soon.
 #[inline(always)]
-pub fn prefetch_lines<T>(at: &T, lines: usize) {
+fn prefetch_lines<T>(at: &T, lines: usize) {
     let base = at as *const T as *const i8;
     for k in 0..lines {
         // `wrapping_add`: the address is only a hint and is never dereferenced, so it may
