@@ -13,11 +13,13 @@
 //! 6. [`wall_motion`]: walls advance at their prescribed velocity.
 //!
 //! Stages 3 and 5 run in [`parts`] over disjoint body ranges, and stage 4 over runs of bonds,
-//! on as many threads as the caller's runner has. In fixed point, forces are summed as exact integers, so the result
+//! on as many threads as the caller's runner has, cut where the runner's measured times say
+//! the parts take equally long ([`balance`]). In fixed point, forces are summed as exact integers, so the result
 //! does not depend on the order of contacts or on the number of parts (DESIGN §5); the order
 //! is fixed anyway, so a one-part `f64` run is reproducible too.
 
 pub mod air_drag;
+pub mod balance;
 pub mod bonds;
 pub mod broad_phase;
 pub mod integration;

@@ -33,6 +33,14 @@ pub trait Parallel: Sync {
     /// Call `f` once on every job and return when all calls have returned. The calls may run
     /// in any order and at the same time.
     fn for_each<J: Send>(&self, jobs: &mut [J], f: &(dyn Fn(&mut J) + Sync));
+    /// How long each job of the last [`Parallel::for_each`] ran, in any unit common to the
+    /// jobs, if the runner measured it and that call had `out.len()` jobs: fills `out` and
+    /// returns true. The step moves its cuts by these times ([`super::balance`]); they never
+    /// change a result. The default measures nothing.
+    fn job_times(&self, out: &mut [u64]) -> bool {
+        let _ = out;
+        false
+    }
 }
 
 /// Runs the parts one after another on the calling thread.

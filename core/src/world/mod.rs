@@ -50,6 +50,7 @@ use crate::material::{Material, MAX_MATERIALS};
 use crate::num::{Scalar, Vec3};
 use crate::pair::PairParams;
 use crate::step::air_drag::AirDrag;
+use crate::step::balance::StageBalance;
 use crate::step::neighbour_list::{key_of, NeighbourList, LIVE_FLAG};
 use crate::step::parts::PairTable;
 use crate::timestep::max_stable_dt_s;
@@ -82,6 +83,17 @@ pub struct World<'a, S: Scalar> {
     pub(crate) bond_table: Bonds<'a, S>,
     /// Optional air drag (off by default; [`crate::effects`]).
     pub(crate) air_drag: AirDrag<S>,
+    /// Where a threaded step cuts its stages ([`crate::step::balance`]); never hashed, since
+    /// it changes no result.
+    pub(crate) balance: StepBalance,
+}
+
+/// The cost factors of the three stages a threaded step cuts into parts.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct StepBalance {
+    pub contacts: StageBalance,
+    pub bonds: StageBalance,
+    pub integration: StageBalance,
 }
 
 impl<'a, S: Scalar> World<'a, S> {
@@ -127,6 +139,7 @@ impl<'a, S: Scalar> World<'a, S> {
             min_rayleigh_s: f64::INFINITY,
             bond_table: Bonds::empty(),
             air_drag: AirDrag::default(),
+            balance: StepBalance::default(),
         })
     }
 

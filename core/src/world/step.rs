@@ -20,6 +20,9 @@ pub type ThreadScratch<'s, S> = &'s mut [BodyForce<S>];
 /// One range per part, for at most N parts.
 type Ranges<const N: usize> = heapless::Vec<Range<usize>, N>;
 
+/// Each part's items, their count and its measured time ([`crate::step::balance`]).
+type Measured<const N: usize> = heapless::Vec<(Range<usize>, u64, u64), N>;
+
 impl<S: Scalar> World<'_, S> {
     /// Advance the world by one time step on the calling thread.
     ///
@@ -154,13 +157,9 @@ impl<S: Scalar> World<'_, S> {
         let mut ranges = Ranges::<N>::new();
         {
             let offsets = self.list.live().offsets;
-            split_ranges(
-                nb,
-                parts,
-                |b| offsets[self.first_sphere_of(b)] as u64,
-                |_| true,
-                &mut ranges,
-            );
+            let entries_before = |b: usize| offsets[self.first_sphere_of(b)] as u64;
+            let weights = self.balance.contacts.weights(nb, &entries_before);
+            split_ranges(nb, parts, |b| weights.before(b), |_| true, &mut ranges);
         }
         let sphere_ranges: Ranges<N> = ranges
             .iter()
@@ -217,6 +216,8 @@ impl<S: Scalar> World<'_, S> {
         par.for_each(&mut jobs, &|part: &mut ContactPart<'_, S>| {
             part.run(&shared)
         });
+        let mut times = [0u64; N];
+        let timed = parts > 1 && S::Q32_32 && par.job_times(&mut times[..jobs.len()]);
         let mut touched = Ranges::<N>::new();
         let mut wall_sums = [[S::Sum::default(); 3]; MAX_WALLS];
         for part in jobs.iter() {
@@ -229,6 +230,19 @@ impl<S: Scalar> World<'_, S> {
             }
         }
         drop(jobs);
+        if timed {
+            let offsets = self.list.live().offsets;
+            let entries = |r: &Range<usize>| {
+                (offsets[self.first_sphere_of(r.end)] - offsets[self.first_sphere_of(r.start)])
+                    as u64
+            };
+            let parts: Measured<N> = ranges
+                .iter()
+                .zip(times)
+                .map(|(r, t)| (r.clone(), entries(r), t))
+                .collect();
+            self.balance.contacts.record(nb, parts.iter().cloned());
+        }
         for (w, sum) in self.walls.iter_mut().zip(wall_sums.iter()) {
             w.force = Vec3::new(
                 S::sum_value(sum[0]),
@@ -271,13 +285,12 @@ impl<S: Scalar> World<'_, S> {
             }
         }
         let mut ranges = Ranges::<N>::new();
-        split_ranges(
-            n,
-            parts.min(sinks.len()).min(n / MIN_BONDS_PER_PART).max(1),
-            |i| i as u64,
-            |_| true,
-            &mut ranges,
-        );
+        let bond_parts = parts.min(sinks.len()).min(n / MIN_BONDS_PER_PART).max(1);
+        {
+            let count_before = |i: usize| i as u64;
+            let weights = self.balance.bonds.weights(n, &count_before);
+            split_ranges(n, bond_parts, |i| weights.before(i), |_| true, &mut ranges);
+        }
         let shared = BondShared {
             sets: &table.sets,
             spheres: &self.spheres[..ns],
@@ -297,8 +310,11 @@ impl<S: Scalar> World<'_, S> {
                 result: Ok(()),
             });
         }
+        let mut times = [0u64; N];
+        let mut timed = false;
         if jobs.len() > 1 {
             par.for_each(&mut jobs, &|part: &mut BondPart<'_, S>| part.run(&shared));
+            timed = S::Q32_32 && par.job_times(&mut times[..jobs.len()]);
         } else {
             jobs.iter_mut().for_each(|part| part.run(&shared));
         }
@@ -314,6 +330,13 @@ impl<S: Scalar> World<'_, S> {
             }
         }
         drop(jobs);
+        if timed {
+            let parts = ranges
+                .iter()
+                .zip(times)
+                .map(|(r, t)| (r.clone(), r.len() as u64, t));
+            self.balance.bonds.record(n, parts);
+        }
         if breaks > 0 {
             remove_broken(&mut self.bond_table, &clock);
         }
@@ -333,13 +356,11 @@ impl<S: Scalar> World<'_, S> {
         let nb = self.n_bodies as usize;
         let ns = self.n_spheres as usize;
         let mut ranges = Ranges::<N>::new();
-        split_ranges(
-            nb,
-            parts,
-            |b| self.first_sphere_of(b) as u64,
-            |_| true,
-            &mut ranges,
-        );
+        {
+            let spheres_before = |b: usize| self.first_sphere_of(b) as u64;
+            let weights = self.balance.integration.weights(nb, &spheres_before);
+            split_ranges(nb, parts, |b| weights.before(b), |_| true, &mut ranges);
+        }
         let sphere_starts: heapless::Vec<usize, N> = ranges
             .iter()
             .map(|r| self.first_sphere_of(r.start))
@@ -399,11 +420,99 @@ impl<S: Scalar> World<'_, S> {
         par.for_each(&mut jobs, &|part: &mut IntegratePart<'_, S, SUMS>| {
             part.run(dt, g)
         });
+        let mut times = [0u64; N];
+        let timed = parts > 1 && S::Q32_32 && par.job_times(&mut times[..jobs.len()]);
         let mut max_disp = S::ZERO;
         for part in jobs.iter() {
             part.result?;
             max_disp = max_disp.max(part.max_disp);
         }
+        drop(jobs);
+        if timed {
+            let spheres = |r: &Range<usize>| {
+                (self.first_sphere_of(r.end) - self.first_sphere_of(r.start)) as u64
+            };
+            let parts: Measured<N> = ranges
+                .iter()
+                .zip(times)
+                .map(|(r, t)| (r.clone(), spheres(r), t))
+                .collect();
+            self.balance.integration.record(nb, parts.iter().cloned());
+        }
         Ok(max_disp)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::num::Fx;
+    use crate::owned::{OwnedStorage, OwnedThreadScratch};
+    use crate::scenario::BenchBed;
+    use crate::step::parts::Parallel;
+
+    /// Runs two parts one after the other and reports the first as taking three times as
+    /// long as the second.
+    struct FirstPartSlow;
+
+    impl Parallel for FirstPartSlow {
+        fn parts(&self) -> usize {
+            2
+        }
+        fn for_each<J: Send>(&self, jobs: &mut [J], f: &(dyn Fn(&mut J) + Sync)) {
+            jobs.iter_mut().for_each(f);
+        }
+        fn job_times(&self, out: &mut [u64]) -> bool {
+            for (k, t) in out.iter_mut().enumerate() {
+                *t = if k == 0 { 3_000 } else { 1_000 };
+            }
+            true
+        }
+    }
+
+    /// The measured times move the cuts: after the first part of every stage was reported
+    /// slow for a while, the bodies of the lower half weigh more than those of the upper half
+    /// in the contact and integration stages. The bits are those of a one-part step.
+    #[test]
+    fn reported_times_move_the_cuts_and_no_bit() {
+        let bed = BenchBed {
+            particles: 600,
+            seed: 5,
+        };
+        let steps = 8_000;
+        let mut arenas = OwnedStorage::<Fx>::new(bed.storage_lengths());
+        let mut serial = bed.build(arenas.storage()).unwrap();
+        serial.run(steps).unwrap();
+
+        let mut arenas = OwnedStorage::<Fx>::new(bed.storage_lengths());
+        let mut w = bed.build(arenas.storage()).unwrap();
+        let mut scratch = OwnedThreadScratch::<Fx>::new(2, w.bodies().len());
+        for _ in 0..steps {
+            w.step_with(&FirstPartSlow, &mut scratch.arenas()).unwrap();
+        }
+        assert_eq!(w.digest(), serial.digest());
+        assert!(w.contact_count() > 50, "the bed should be in contact");
+
+        let nb = w.n_bodies as usize;
+        let offsets = w.list.live().offsets;
+        let entries_before = |b: usize| offsets[w.first_sphere_of(b)] as u64;
+        let spheres_before = |b: usize| w.first_sphere_of(b) as u64;
+        let contacts = w.balance.contacts.weights(nb, &entries_before);
+        let integration = w.balance.integration.weights(nb, &spheres_before);
+        // Weight per unit of count, lower half against upper half: at least 1.5 (it starts
+        // at 1, every unit weighing the same).
+        let halves = |before: &dyn Fn(usize) -> u64, count: &dyn Fn(usize) -> u64| {
+            let (w_lo, w_hi) = (before(nb / 2), before(nb) - before(nb / 2));
+            let (c_lo, c_hi) = (count(nb / 2), count(nb) - count(nb / 2));
+            (w_lo as u128 * c_hi as u128, w_hi as u128 * c_lo as u128)
+        };
+        for (stage, (lower, upper)) in [
+            ("contacts", halves(&|b| contacts.before(b), &entries_before)),
+            (
+                "integration",
+                halves(&|b| integration.before(b), &spheres_before),
+            ),
+        ] {
+            assert!(2 * lower > 3 * upper, "{stage}: {lower} against {upper}");
+        }
     }
 }

@@ -215,10 +215,14 @@ pub fn restitution_reference(m_star: f64, r_star: f64, e_star: f64, e: f64, v: f
 /// concurrency by a thread pool that is not the host's, for the thread-count tests. The
 /// pool of each count is built once per test binary and its idle threads sleep, so tests of
 /// several counts at once do not starve each other (a runner that spawned a thread per part
-/// and stage spent most of the thread-count test starting threads).
+/// and stage spent most of the thread-count test starting threads). It reports random job
+/// times ([`Parallel::job_times`]), so the step moves its cuts at random as well: a cut that
+/// changed a bit would show in the digests.
 pub struct Threads {
     parts: usize,
     pool: Arc<rayon::ThreadPool>,
+    /// State of the random job times (xorshift64).
+    times: Mutex<u64>,
 }
 
 impl Threads {
@@ -239,7 +243,11 @@ impl Threads {
                 pool
             }
         };
-        Threads { parts, pool }
+        Threads {
+            parts,
+            pool,
+            times: Mutex::new(0x9e37_79b9_7f4a_7c15 ^ parts as u64),
+        }
     }
 }
 
@@ -253,6 +261,17 @@ impl Parallel for Threads {
                 s.spawn(move |_| f(j));
             }
         });
+    }
+    /// Random times from 1 to 10^6 units (xorshift64).
+    fn job_times(&self, out: &mut [u64]) -> bool {
+        let mut x = self.times.lock().unwrap_or_else(PoisonError::into_inner);
+        for t in out.iter_mut() {
+            *x ^= *x << 13;
+            *x ^= *x >> 7;
+            *x ^= *x << 17;
+            *t = 1 + *x % 1_000_000;
+        }
+        true
     }
 }
 

@@ -33,11 +33,12 @@
 // and reported so (`pending` back at zero), and it writes the next stage's task only then.
 #![allow(unsafe_code)]
 
-use arachis_core::step::parts::Parallel;
+use arachis_core::step::parts::{Parallel, MAX_PARTS};
 use std::cell::UnsafeCell;
 use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::sync::atomic::{AtomicBool, AtomicU32, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Condvar, Mutex, PoisonError};
+use std::time::Instant;
 
 /// Most spins (each a `pause` instruction, about 40–140 cycles) before a waiting thread
 /// sleeps and gives its core to other threads instead: about a millisecond, several stages'
@@ -63,6 +64,10 @@ pub struct Team {
     done: AtomicBool,
     /// Set when a helper's job panicked; the caller panics in turn.
     panicked: AtomicBool,
+    /// How long each job of the last stage ran, ns ([`Parallel::job_times`]).
+    job_nanos: Vec<AtomicU64>,
+    /// The job count of the last stage whose jobs were timed.
+    timed_jobs: AtomicUsize,
     /// The caller's spin budget between its stages ([`Backoff`]; only the caller uses it).
     caller_spins: AtomicU32,
     /// Where a thread whose spinning is spent sleeps ([`Team::sleep_until`]); the mutex
@@ -94,6 +99,8 @@ impl Team {
             stage: UnsafeCell::new((None, 0)),
             done: AtomicBool::new(false),
             panicked: AtomicBool::new(false),
+            job_nanos: (0..MAX_PARTS).map(|_| AtomicU64::new(0)).collect(),
+            timed_jobs: AtomicUsize::new(0),
             caller_spins: AtomicU32::new(MAX_SPINS),
             bed: Mutex::new(()),
             wake: Condvar::new(),
@@ -229,18 +236,37 @@ impl Parallel for Team {
         self.parts
     }
 
+    /// The wall-clock time of each job of the last stage, ns, measured on the thread that
+    /// ran it.
+    fn job_times(&self, out: &mut [u64]) -> bool {
+        if out.len() < 2 || self.timed_jobs.load(Ordering::Relaxed) != out.len() {
+            return false;
+        }
+        for (t, nanos) in out.iter_mut().zip(&self.job_nanos) {
+            *t = nanos.load(Ordering::Relaxed);
+        }
+        true
+    }
+
     /// Job 0 and any beyond the team's size on the calling thread, job i on helper i.
     fn for_each<J: Send>(&self, jobs: &mut [J], f: &(dyn Fn(&mut J) + Sync)) {
         let n = jobs.len();
         if self.parts == 1 || n <= 1 {
+            self.timed_jobs.store(0, Ordering::Relaxed);
             jobs.iter_mut().for_each(f);
             return;
         }
         let ptr = Jobs(jobs.as_mut_ptr());
+        let timed = n <= self.job_nanos.len();
         let run = move |i: usize| {
             let p = &ptr;
+            let start = Instant::now();
             // SAFETY: i < n, and each index runs on exactly one thread.
-            f(unsafe { &mut *p.0.add(i) })
+            f(unsafe { &mut *p.0.add(i) });
+            if timed {
+                let nanos = start.elapsed().as_nanos().min(u64::MAX as u128) as u64;
+                self.job_nanos[i].store(nanos, Ordering::Relaxed);
+            }
         };
         let task: &(dyn Fn(usize) + Sync) = &run;
         // SAFETY: the pointer outlives its use: this function returns only after every
@@ -262,6 +288,8 @@ impl Parallel for Team {
         self.caller_spins.store(backoff.budget, Ordering::Relaxed);
         // SAFETY: no helper is inside the stage any more.
         unsafe { *self.stage.get() = (None, 0) };
+        self.timed_jobs
+            .store(if timed { n } else { 0 }, Ordering::Relaxed);
         if self.panicked.load(Ordering::Acquire) {
             panic!("a stepping thread panicked");
         }
@@ -341,6 +369,29 @@ mod tests {
         });
         assert_eq!(counts, [40; 3]);
         assert_eq!(team.sleepers.load(Ordering::SeqCst), 0);
+    }
+
+    /// The team times each job of a stage on the thread that ran it, for the step's cuts;
+    /// a stage of another job count gets no times.
+    #[test]
+    fn each_job_is_timed() {
+        let team = Team::new(2);
+        let nap = std::time::Duration::from_millis(20);
+        std::thread::scope(|s| {
+            s.spawn(|| team.serve(1));
+            let mut jobs = [0u64, 1];
+            team.for_each(&mut jobs, &|j: &mut u64| {
+                if *j == 1 {
+                    std::thread::sleep(nap);
+                }
+            });
+            team.finish();
+        });
+        let mut times = [0u64; 2];
+        assert!(team.job_times(&mut times));
+        assert!(times[1] >= nap.as_nanos() as u64, "{times:?}");
+        assert!(times[0] < times[1], "{times:?}");
+        assert!(!team.job_times(&mut [0u64; 3]));
     }
 
     /// A job that panics on a helper makes the stage panic on the caller, not hang.
