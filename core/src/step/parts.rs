@@ -6,7 +6,9 @@
 //! parts one after another) calls each part once. In fixed point the result is the same bits
 //! for any number of parts, because each contact depends only on the state at the start of
 //! the step and on its own history, and forces are summed as exact integers
-//! ([`crate::num::Scalar::Sum`]).
+//! ([`crate::num::Scalar::Sum`]). A runner that measures how long each part ran
+//! ([`Parallel::job_times`]) lets the step move its cuts until the parts take equally long
+//! ([`super::balance`]).
 //!
 //! ```
 //! use arachis_core::step::parts::{Parallel, Serial};

@@ -10,6 +10,10 @@
 //! a wait that outlasts its spinning sleeps until the stage it waits for is published or
 //! finished ([`Backoff`] says why it sleeps rather than yields).
 //!
+//! The team also times each part on the thread that runs it ([`Parallel::job_times`]), so that
+//! the step can move its cuts until the parts take equally long
+//! ([`arachis_core::step::balance`]); the times never change a result.
+//!
 //! The team lives inside [`std::thread::scope`]: [`Team::serve`] runs on each helper, the
 //! stepping loop on the calling thread, and [`Team::finish`] lets the helpers go.
 //!
