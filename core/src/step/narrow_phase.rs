@@ -101,25 +101,33 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
             for e in range {
                 let entry = self.entries[e];
                 let key = key_of(entry.partner);
-                if !with_effects {
-                    let fast = if is_wall(key) {
-                        self.wall_fast(sh, si, key, e, &entry, &mut owner)
-                    } else {
-                        self.sphere_fast(sh, si, key as usize, e, &entry, &mut owner)
-                    };
-                    match fast {
-                        Fast::Done => {
-                            owner_touched = true;
-                            continue;
-                        }
-                        Fast::Apart => {
-                            if entry.partner != key || entry.delta != Vec3::ZERO {
-                                self.write(e, key, &ContactState::default(), false);
-                            }
-                            continue;
-                        }
-                        Fast::General => {}
+                let fast = if is_wall(key) {
+                    self.wall_fast(sh, si, key, e, &entry, &mut owner, with_effects)
+                } else {
+                    self.sphere_fast(
+                        sh,
+                        (i, si),
+                        key as usize,
+                        e,
+                        &entry,
+                        &mut owner,
+                        with_effects,
+                    )
+                };
+                match fast {
+                    Fast::Done => {
+                        owner_touched = true;
+                        continue;
                     }
+                    Fast::Apart => {
+                        // A pair of the fused law keeps no effect history, so its slot
+                        // holds the default and needs no test here.
+                        if entry.partner != key || entry.delta != Vec3::ZERO {
+                            self.write(e, key, &ContactState::default(), false);
+                        }
+                        continue;
+                    }
+                    Fast::General => {}
                 }
                 let state = ContactState::join(&entry, with_effects.then(|| &self.effects[e]));
                 let found = if is_wall(key) {
@@ -160,25 +168,35 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         Ok(())
     }
 
-    /// The fast path of a sphere–sphere entry (owner `si`, partner sphere `j`): the touching
-    /// test and, for a pair that uses only the base law, the fused law
+    /// The fast path of a sphere–sphere entry (owner sphere `i`, record `si`, partner sphere
+    /// `j`): the touching test and, for a pair that uses only the base law, the fused law
     /// ([`evaluate_fast`]) on the spheres' motion snapshots, in [`Scalar::Fast`] arithmetic.
     /// The centre difference cannot overflow: a listed pair was within reach plus the skin
-    /// at the last rebuild and has moved less than the skin since. Anything else (optional
-    /// effects, bonds, an undefined pair, a contact outside the fused law's envelope) goes to
-    /// the general path, which takes the same touching decision (the same rounded |d|² and
-    /// reach²).
+    /// at the last rebuild and has moved less than the skin since. A bonded pair is apart, as
+    /// on the general path. Anything else (optional effects, an undefined pair, a contact
+    /// outside the fused law's envelope) goes to the general path, which takes the same
+    /// touching decision (the same rounded |d|² and reach²).
+    ///
+    /// In a world that keeps effect history (`with_effects`) the pair is tested first: a
+    /// pair with an effect may hold beyond touching (an attached JKR neck), which only the
+    /// general path knows.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn sphere_fast(
         &mut self,
         sh: &Shared<'_, S>,
-        si: &Sphere<S>,
+        (i, si): (usize, &Sphere<S>),
         j: usize,
         e: usize,
         entry: &NeighbourEntry<S>,
         owner: &mut BodyForce<S>,
+        with_effects: bool,
     ) -> Fast {
         let sj = &sh.spheres[j];
+        let pair = &sh.pairs[si.material as usize][sj.material as usize];
+        if with_effects && !pair.fused.eligible {
+            return Fast::General;
+        }
         let f = S::to_fast;
         let rs = f(si.radius) + f(sj.radius);
         if !rs.within(REACH_SQUARE_BITS) {
@@ -193,12 +211,11 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         if d2 >= rs * rs {
             return Fast::Apart;
         }
-        if !sh.bonded.is_empty() {
-            return Fast::General;
-        }
-        let pair = &sh.pairs[si.material as usize][sj.material as usize];
         if !pair.fused.eligible {
             return Fast::General;
+        }
+        if crate::bond::arena::is_bonded(sh.bonded, i as u32, j as u32) {
+            return Fast::Apart;
         }
         // R* = RiRj/(Ri+Rj) and m* = mimj/(mi+mj), halved exactly when equal.
         let r_star = if si.radius == sj.radius {
@@ -245,6 +262,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
 
     /// The fast path of a sphere–wall entry (see [`ContactPart::sphere_fast`]): the wall
     /// face's geometry (checked arithmetic, as in the general path), then the fused law.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn wall_fast(
         &mut self,
@@ -254,14 +272,18 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         e: usize,
         entry: &NeighbourEntry<S>,
         owner: &mut BodyForce<S>,
+        with_effects: bool,
     ) -> Fast {
         let wi = ((key & !crate::contact::WALL_PARTNER_FLAG) >> 4) as usize;
         let w = &sh.walls[wi];
+        let pair = &sh.pairs[si.material as usize][w.material as usize];
+        if with_effects && !pair.fused.eligible {
+            return Fast::General;
+        }
         let Some((normal, overlap)) = w.shape.contact(key & 0xF, si.position, si.radius) else {
             return Fast::Apart;
         };
         let wall_velocity = wall_velocity_at(w, si, normal, overlap);
-        let pair = &sh.pairs[si.material as usize][w.material as usize];
         if !pair.fused.eligible {
             return Fast::General;
         }
