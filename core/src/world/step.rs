@@ -23,6 +23,20 @@ type Ranges<const N: usize> = heapless::Vec<Range<usize>, N>;
 /// Each part's items, their count and its measured time ([`crate::step::balance`]).
 type Measured<const N: usize> = heapless::Vec<(Range<usize>, u64, u64), N>;
 
+/// The parts `ranges` of a stage with their counts, where `count_before(i)` counts items
+/// `0..i`, and their measured `times`.
+fn measured<const N: usize>(
+    ranges: &[Range<usize>],
+    times: &[u64],
+    count_before: impl Fn(usize) -> u64,
+) -> Measured<N> {
+    ranges
+        .iter()
+        .zip(times)
+        .map(|(r, &t)| (r.clone(), count_before(r.end) - count_before(r.start), t))
+        .collect()
+}
+
 impl<S: Scalar> World<'_, S> {
     /// Advance the world by one time step on the calling thread.
     ///
@@ -232,15 +246,7 @@ impl<S: Scalar> World<'_, S> {
         drop(jobs);
         if timed {
             let offsets = self.list.live().offsets;
-            let entries = |r: &Range<usize>| {
-                (offsets[self.first_sphere_of(r.end)] - offsets[self.first_sphere_of(r.start)])
-                    as u64
-            };
-            let parts: Measured<N> = ranges
-                .iter()
-                .zip(times)
-                .map(|(r, t)| (r.clone(), entries(r), t))
-                .collect();
+            let parts = measured::<N>(&ranges, &times, |b| offsets[self.first_sphere_of(b)] as u64);
             self.balance.contacts.record(nb, parts.iter().cloned());
         }
         for (w, sum) in self.walls.iter_mut().zip(wall_sums.iter()) {
@@ -331,11 +337,8 @@ impl<S: Scalar> World<'_, S> {
         }
         drop(jobs);
         if timed {
-            let parts = ranges
-                .iter()
-                .zip(times)
-                .map(|(r, t)| (r.clone(), r.len() as u64, t));
-            self.balance.bonds.record(n, parts);
+            let parts = measured::<N>(&ranges, &times, |i| i as u64);
+            self.balance.bonds.record(n, parts.iter().cloned());
         }
         if breaks > 0 {
             remove_broken(&mut self.bond_table, &clock);
@@ -429,14 +432,7 @@ impl<S: Scalar> World<'_, S> {
         }
         drop(jobs);
         if timed {
-            let spheres = |r: &Range<usize>| {
-                (self.first_sphere_of(r.end) - self.first_sphere_of(r.start)) as u64
-            };
-            let parts: Measured<N> = ranges
-                .iter()
-                .zip(times)
-                .map(|(r, t)| (r.clone(), spheres(r), t))
-                .collect();
+            let parts = measured::<N>(&ranges, &times, |b| self.first_sphere_of(b) as u64);
             self.balance.integration.record(nb, parts.iter().cloned());
         }
         Ok(max_disp)
