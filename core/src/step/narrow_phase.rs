@@ -104,15 +104,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
                 let fast = if is_wall(key) {
                     self.wall_fast(sh, si, key, e, &entry, &mut owner, with_effects)
                 } else {
-                    self.sphere_fast(
-                        sh,
-                        (i, si),
-                        key as usize,
-                        e,
-                        &entry,
-                        &mut owner,
-                        with_effects,
-                    )
+                    self.sphere_fast(sh, i, si, key as usize, e, &entry, &mut owner, with_effects)
                 };
                 match fast {
                     Fast::Done => {
@@ -185,7 +177,8 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
     fn sphere_fast(
         &mut self,
         sh: &Shared<'_, S>,
-        (i, si): (usize, &Sphere<S>),
+        i: usize,
+        si: &Sphere<S>,
         j: usize,
         e: usize,
         entry: &NeighbourEntry<S>,
