@@ -74,16 +74,14 @@ impl StageBalance {
             *self = StageBalance::new();
             self.items = items;
         }
-        let (count, time) = parts
-            .clone()
-            .filter(|(_, c, t)| *c > 0 && *t > 0)
-            .fold((0u128, 0u128), |(c, t), p| {
-                (c + p.1 as u128, t + p.2 as u128)
-            });
+        let parts = parts.filter(|(_, c, t)| *c > 0 && *t > 0);
+        let (count, time) = parts.clone().fold((0u128, 0u128), |(c, t), p| {
+            (c + p.1 as u128, t + p.2 as u128)
+        });
         if count == 0 || time == 0 {
             return;
         }
-        for (range, c, t) in parts.filter(|(_, c, t)| *c > 0 && *t > 0) {
+        for (range, c, t) in parts {
             // This part's time per unit of count over the stage's mean, in UNITs.
             let measured = (t as u128 * count * UNIT as u128 / (c as u128 * time)) as u64;
             for b in 0..BINS {

@@ -23,6 +23,14 @@ type Ranges<const N: usize> = heapless::Vec<Range<usize>, N>;
 /// Each part's items, their count and its measured time ([`crate::step::balance`]).
 type Measured<const N: usize> = heapless::Vec<(Range<usize>, u64, u64), N>;
 
+/// The time each of a stage's `jobs` parts took, as `par` measured it, when the step may
+/// cut by it: two parts or more, in fixed point (an `f64` sum depends on the cuts, so `f64`
+/// keeps its cuts by count; [`crate::step::balance`]).
+fn part_times<S: Scalar, P: Parallel, const N: usize>(par: &P, jobs: usize) -> Option<[u64; N]> {
+    let mut times = [0u64; N];
+    (jobs > 1 && S::Q32_32 && par.job_times(&mut times[..jobs])).then_some(times)
+}
+
 /// The parts `ranges` of a stage with their counts, where `count_before(i)` counts items
 /// `0..i`, and their measured `times`.
 fn measured<const N: usize>(
@@ -230,8 +238,7 @@ impl<S: Scalar> World<'_, S> {
         par.for_each(&mut jobs, &|part: &mut ContactPart<'_, S>| {
             part.run(&shared)
         });
-        let mut times = [0u64; N];
-        let timed = parts > 1 && S::Q32_32 && par.job_times(&mut times[..jobs.len()]);
+        let times = part_times::<S, P, N>(par, jobs.len());
         let mut touched = Ranges::<N>::new();
         let mut wall_sums = [[S::Sum::default(); 3]; MAX_WALLS];
         for part in jobs.iter() {
@@ -244,7 +251,7 @@ impl<S: Scalar> World<'_, S> {
             }
         }
         drop(jobs);
-        if timed {
+        if let Some(times) = times {
             let offsets = self.list.live().offsets;
             let parts = measured::<N>(&ranges, &times, |b| offsets[self.first_sphere_of(b)] as u64);
             self.balance.contacts.record(nb, parts.iter().cloned());
@@ -316,14 +323,12 @@ impl<S: Scalar> World<'_, S> {
                 result: Ok(()),
             });
         }
-        let mut times = [0u64; N];
-        let mut timed = false;
         if jobs.len() > 1 {
             par.for_each(&mut jobs, &|part: &mut BondPart<'_, S>| part.run(&shared));
-            timed = S::Q32_32 && par.job_times(&mut times[..jobs.len()]);
         } else {
             jobs.iter_mut().for_each(|part| part.run(&shared));
         }
+        let times = part_times::<S, P, N>(par, jobs.len());
         let mut breaks = 0u64;
         for (k, part) in jobs.iter().enumerate() {
             part.result?;
@@ -336,7 +341,7 @@ impl<S: Scalar> World<'_, S> {
             }
         }
         drop(jobs);
-        if timed {
+        if let Some(times) = times {
             let parts = measured::<N>(&ranges, &times, |i| i as u64);
             self.balance.bonds.record(n, parts.iter().cloned());
         }
@@ -423,15 +428,14 @@ impl<S: Scalar> World<'_, S> {
         par.for_each(&mut jobs, &|part: &mut IntegratePart<'_, S, SUMS>| {
             part.run(dt, g)
         });
-        let mut times = [0u64; N];
-        let timed = parts > 1 && S::Q32_32 && par.job_times(&mut times[..jobs.len()]);
+        let times = part_times::<S, P, N>(par, jobs.len());
         let mut max_disp = S::ZERO;
         for part in jobs.iter() {
             part.result?;
             max_disp = max_disp.max(part.max_disp);
         }
         drop(jobs);
-        if timed {
+        if let Some(times) = times {
             let parts = measured::<N>(&ranges, &times, |b| self.first_sphere_of(b) as u64);
             self.balance.integration.record(nb, parts.iter().cloned());
         }
