@@ -82,6 +82,31 @@ pub(crate) fn pair_key(a: u32, b: u32) -> u64 {
     ((a as u64) << 32) | b as u64
 }
 
+/// The live bonds, sorted by sphere pair, with a bound on their spheres: which pairs of
+/// spheres a bond joins (bonded pairs get no contact force).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BondedPairs<'b, S: Scalar> {
+    bonds: &'b [Bond<S>],
+    /// No bond's second sphere lies beyond this ([`Bonds::last_partner`]).
+    last_partner: u32,
+}
+
+impl<S: Scalar> BondedPairs<'_, S> {
+    /// `true` if spheres `i` < `j` are joined by a live bond. A pair outside the spheres that
+    /// bonds join (below the first bond's first sphere, or beyond the last partner ever
+    /// bonded) is answered without the search: in a field, every pair with a soil grain or a
+    /// machine part, whose spheres come after the plants'. The answer is the search's.
+    #[inline(always)]
+    pub(crate) fn joins(&self, i: u32, j: u32) -> bool {
+        match self.bonds.first() {
+            Some(first) if i >= first.sphere_a && j <= self.last_partner => {
+                is_bonded(self.bonds, i, j)
+            }
+            _ => false,
+        }
+    }
+}
+
 /// `true` if spheres `i` < `j` are joined by a bond in the sorted slice `bonds`.
 #[inline]
 pub(crate) fn is_bonded<S: Scalar>(bonds: &[Bond<S>], i: u32, j: u32) -> bool {
@@ -122,6 +147,9 @@ pub struct Bonds<'a, S: Scalar> {
     pub(crate) schedule: heapless::Vec<Scheduled<S>, MAX_SCHEDULED_FORMATIONS>,
     /// Smallest stable time step over all bonds ever made, s (∞ with none).
     pub(crate) max_dt_s: f64,
+    /// The largest second sphere (b) of any bond ever made (0 with none): no live bond joins
+    /// a pair whose larger sphere lies beyond it ([`BondedPairs`]).
+    pub(crate) last_partner: u32,
 }
 
 impl<'a, S: Scalar> Bonds<'a, S> {
@@ -137,6 +165,15 @@ impl<'a, S: Scalar> Bonds<'a, S> {
             breaks_total: 0,
             schedule: heapless::Vec::new(),
             max_dt_s: f64::INFINITY,
+            last_partner: 0,
+        }
+    }
+
+    /// The live bonds as the contact stage asks them ([`BondedPairs::joins`]).
+    pub(crate) fn pairs(&self) -> BondedPairs<'_, S> {
+        BondedPairs {
+            bonds: self.bonds(),
+            last_partner: self.last_partner,
         }
     }
 

@@ -232,6 +232,7 @@ impl<S: Scalar> Bonds<'_, S> {
         spheres: &[Sphere<S>],
         bodies: &[Body<S>],
     ) -> Bond<S> {
+        self.last_partner = self.last_partner.max(b);
         let (sa, sb) = (spheres[a as usize], spheres[b as usize]);
         let d = sb.position - sa.position;
         let normal =

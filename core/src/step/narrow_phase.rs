@@ -26,7 +26,7 @@ use super::neighbour_list::{is_wall, key_of, LIVE_FLAG};
 use super::parts::{widen, PairTable};
 use super::prefetch::{prefetch_record, worth_hinting};
 use crate::body::{Body, BodyForce, Sphere};
-use crate::bond::Bond;
+use crate::bond::arena::BondedPairs;
 use crate::contact::fused::{evaluate_fast, FusedContact, FusedLoad, Geometry};
 use crate::contact::{ContactKinematics, ContactState, EffectHistory, NeighbourEntry};
 use crate::error::{Other, Stage, StepError};
@@ -45,8 +45,8 @@ pub(crate) struct Shared<'w, S: Scalar> {
     pub pairs: &'w PairTable<S>,
     /// Walls.
     pub walls: &'w [Wall<S>],
-    /// Live bonds, sorted by sphere pair: bonded pairs get no contact force.
-    pub bonded: &'w [Bond<S>],
+    /// Live bonds: bonded pairs get no contact force.
+    pub bonded: BondedPairs<'w, S>,
     /// Entry offsets of the live neighbour list, per owner sphere.
     pub offsets: &'w [u32],
     /// Time step, ms.
@@ -207,7 +207,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         if !pair.fused.eligible {
             return Fast::General;
         }
-        if crate::bond::arena::is_bonded(sh.bonded, i as u32, j as u32) {
+        if sh.bonded.joins(i as u32, j as u32) {
             return Fast::Apart;
         }
         // R* = RiRj/(Ri+Rj) and m* = mimj/(mi+mj), halved exactly when equal.
@@ -596,7 +596,7 @@ fn sphere_touch<S: Scalar>(
     if d2 >= reach * reach {
         return Ok(None);
     }
-    if crate::bond::arena::is_bonded(sh.bonded, i as u32, j as u32) {
+    if sh.bonded.joins(i as u32, j as u32) {
         // A bond carries the load; the pair meets the contact law, with fresh history, only
         // once the bond breaks.
         return Ok(None);

@@ -193,7 +193,7 @@ impl<S: Scalar> World<'_, S> {
             spheres: &self.spheres[..ns],
             pairs: &self.pairs,
             walls: &self.walls,
-            bonded: self.bond_table.bonds(),
+            bonded: self.bond_table.pairs(),
             offsets: live.offsets,
             dt: self.dt,
         };
