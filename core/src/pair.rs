@@ -8,6 +8,7 @@
 //! assert!(p.validate().is_ok());
 //! ```
 
+use crate::contact::fused::jkr::{JKR_ADHESION_BITS, JKR_C_BITS};
 use crate::contact::fused::{
     FusedPair, DAMPING_BITS, FRICTION_BITS, NORMAL_STIFFNESS_BITS, TANGENTIAL_STIFFNESS_BITS,
 };
@@ -205,9 +206,10 @@ impl<S: Scalar> PairParams<S> {
     }
 
     /// Set [`PairParams::fused`] from the terms: the fused law applies to a defined pair with
-    /// no optional effect, EDEM's conventions, the Hertz, Mindlin and Coulomb terms on (damping
-    /// and rolling may be off: their factors are then zero) and constants inside the fused
-    /// law's envelope. A pair in LIGGGHTS' conventions takes the terms.
+    /// no optional effect but JKR cohesion, EDEM's conventions, the Hertz, Mindlin and
+    /// Coulomb terms on (damping and rolling may be off: their factors are then zero) and
+    /// constants inside the fused law's envelope. A pair in LIGGGHTS' conventions takes the
+    /// terms.
     pub fn fuse(&mut self) {
         let on = |on: bool, x: S| if on { x } else { S::ZERO };
         let f = FusedPair {
@@ -218,12 +220,15 @@ impl<S: Scalar> PairParams<S> {
             tangential_damping: on(self.tangential_damping.on, self.tangential_damping.coef),
             friction: self.coulomb.mu,
             rolling_friction: on(self.rolling.on, self.rolling.mu_r),
+            jkr: self.jkr.on,
+            jkr_c: on(self.jkr.on, self.jkr.c),
+            jkr_adhesion: on(self.jkr.on, self.jkr.adhesion_coef),
         };
+        // JKR is the one optional effect the fused law carries ([`crate::contact::fused::jkr`]).
         let no_effects = !(self.viscoelastic.on
             | self.cohesion.on
             | self.hysteretic.on
             | self.rolling_epsd.on
-            | self.jkr.on
             | self.rolling_liggghts.on
             | self.rolling_epsd2.on
             | self.coulomb.spring_only);
@@ -234,7 +239,9 @@ impl<S: Scalar> PairParams<S> {
             & to_fx(f.normal_damping).within(DAMPING_BITS)
             & to_fx(f.tangential_damping).within(DAMPING_BITS)
             & to_fx(f.friction).within(FRICTION_BITS)
-            & to_fx(f.rolling_friction).within(FRICTION_BITS);
+            & to_fx(f.rolling_friction).within(FRICTION_BITS)
+            & to_fx(f.jkr_c).within(JKR_C_BITS)
+            & to_fx(f.jkr_adhesion).within(JKR_ADHESION_BITS);
         self.fused = FusedPair {
             eligible: self.defined & no_effects & base_on & in_range,
             ..f

@@ -141,14 +141,14 @@ fn epsd_rolls_with_the_limiting_torque_above_the_limit() {
 /// Work of adhesion Γ, J/m², for the JKR tests.
 const GAMMA: f64 = 0.1;
 
-/// A pod sphere hanging under a fixed (kinematic) one, gravity ramped from 0 to `g_end`
-/// (m/s², −z) over `ramp` steps, then held for `hold` steps. Returns (attached at the end,
-/// final overlap mm).
-fn hang(g_end: f64, ramp: u64, hold: u64) -> (bool, f64) {
+/// A pod sphere hanging under a fixed (kinematic) one, the pair `spec` with JKR cohesion,
+/// gravity ramped from 0 to `g_end` (m/s², −z) over `ramp` steps, then held for `hold`
+/// steps. Returns (attached at the end, final overlap mm).
+fn hang(spec: PairSpec, g_end: f64, ramp: u64, hold: u64) -> (bool, f64) {
     let mut o = Owned::<Fx>::new(2, 2);
     let mut w = World::new(o.storage()).unwrap();
     let pod = w.add_material(POD).unwrap();
-    w.set_pair(pod, pod, normal_only(0.3)).unwrap();
+    w.set_pair(pod, pod, spec).unwrap();
     w.set_pair_effects(
         pod,
         pod,
@@ -200,17 +200,27 @@ fn jkr_hanging_sphere_rests_at_the_jkr_overlap_and_pulls_off_at_1_5_pi_gamma_r()
         }
     }
     let delta = lo * lo / r_star - (2.0 * PI * gam * lo / es).sqrt();
-    let (held, overlap) = hang(0.5 * g_c, 20_000, 10_000);
-    println!(
-        "JKR: F_c {fc:.6e} N (g_c {g_c:.4} m/s²); at F_c/2 overlap {overlap:.6e} mm, theory \
-         {delta:.6e} mm ({:+.3} %)",
-        100.0 * (overlap / delta - 1.0)
-    );
-    assert!(held);
-    assert!((overlap / delta - 1.0).abs() < 1e-2);
-    let (below, _) = hang(0.99 * g_c, 40_000, 5_000);
-    let (above, _) = hang(1.01 * g_c, 40_000, 5_000);
-    println!("JKR: attached at 0.99·F_c: {below}; at 1.01·F_c: {above}");
-    assert!(below, "fell off below the JKR pull-off force");
-    assert!(!above, "still attached above the JKR pull-off force");
+    // The normal-only pair takes the checked terms; with Mindlin and Coulomb on, the pair
+    // takes the fused law while the overlap is positive, and the terms across the neck.
+    for (name, spec) in [
+        ("checked terms", normal_only(0.3)),
+        ("fused law", PairSpec::hertz_mindlin(0.3, 0.5, 0.0)),
+    ] {
+        let (held, overlap) = hang(spec, 0.5 * g_c, 20_000, 10_000);
+        println!(
+            "JKR, {name}: F_c {fc:.6e} N (g_c {g_c:.4} m/s²); at F_c/2 overlap {overlap:.6e} \
+             mm, theory {delta:.6e} mm ({:+.3} %)",
+            100.0 * (overlap / delta - 1.0)
+        );
+        assert!(held, "{name}");
+        assert!((overlap / delta - 1.0).abs() < 1e-2, "{name}");
+        let (below, _) = hang(spec, 0.99 * g_c, 40_000, 5_000);
+        let (above, _) = hang(spec, 1.01 * g_c, 40_000, 5_000);
+        println!("JKR, {name}: attached at 0.99·F_c: {below}; at 1.01·F_c: {above}");
+        assert!(below, "{name}: fell off below the JKR pull-off force");
+        assert!(
+            !above,
+            "{name}: still attached above the JKR pull-off force"
+        );
+    }
 }

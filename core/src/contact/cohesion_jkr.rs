@@ -27,6 +27,11 @@
 //! SJKR) the Coulomb limit and rolling torque see the repulsive part only (Thornton's
 //! Fn + 2F_c friction load is of the same kind).
 //!
+//! **Where it runs.** A pair whose other terms are the base law's takes the fused law
+//! ([`super::fused::jkr`]: the same split of the force, in the fast arithmetic, with a
+//! cheaper Newton start) while its overlap is positive; this term evaluates the neck held
+//! beyond touching, and every contact of a pair with other optional effects.
+//!
 //! **Simplifications.** Sphere–sphere contacts hold to δ_min (the narrow phase keeps an
 //! attached pair while its gap is below [`CohesionJkr::reach`]; the Verlet skin R_max/8 is far
 //! larger than any JKR separation of interest, 7 µm for Γ = 0.1 J/m², E* = 10 MPa,

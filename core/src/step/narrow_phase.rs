@@ -7,9 +7,10 @@
 //! R* = RiRj/(Ri+Rj), m* = mimj/(mi+mj) (wall: R* = Ri, m* = mi), a = √(R*α). The contact
 //! point is c = ri + n̂(Ri − α/2); lever arms run from each body's centre of mass to c.
 //!
-//! A touching contact whose pair uses only the base law is evaluated by the fused law
-//! ([`crate::contact::fused`]) when it lies inside that law's overflow envelope; any other
-//! (optional effects, a base term switched off, an extreme state) by the pair's terms
+//! A touching contact whose pair uses only the base law, or the base law with JKR cohesion,
+//! is evaluated by the fused law ([`crate::contact::fused`]) when it lies inside that law's
+//! overflow envelope; any other (other optional effects, a base term switched off, an extreme
+//! state, a JKR neck held beyond touching) by the pair's terms
 //! ([`crate::pair::PairParams::evaluate`]), which check every operation.
 //!
 //! The stage runs in parts ([`ContactPart`]): each part owns a range of owner spheres (whole
@@ -135,6 +136,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
                             let c = touch.fused_contact(sh);
                             if let Some(load) = evaluate_fast(&c, &pair.fused.fast(), &mut delta) {
                                 touch.state.delta = delta.map(S::from_fast);
+                                touch.state.jkr_attached |= pair.fused.jkr;
                                 self.apply_touch(&touch, &load_of(&load));
                                 self.write(e, key, &touch.state, true);
                                 continue;
@@ -198,11 +200,11 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         }
         let d = sj.position.map(f) - si.position.map(f);
         if !(d.x.abs() < rs && d.y.abs() < rs && d.z.abs() < rs) {
-            return Fast::Apart;
+            return self.apart_unless_neck(pair, e);
         }
         let d2 = d.norm2();
         if d2 >= rs * rs {
-            return Fast::Apart;
+            return self.apart_unless_neck(pair, e);
         }
         if !pair.fused.eligible {
             return Fast::General;
@@ -250,7 +252,34 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
             partner: j as u32 | LIVE_FLAG,
             delta: delta.map(S::from_fast),
         };
+        self.note_jkr_attached(pair, e);
         Fast::Done
+    }
+
+    /// A pair apart on the fast path's test: [`Fast::Apart`], unless it is a JKR pair whose
+    /// neck held last step. A neck may hold beyond touching (down to the JKR separation),
+    /// which only the general path evaluates.
+    #[inline(always)]
+    fn apart_unless_neck(&self, pair: &PairParams<S>, e: usize) -> Fast {
+        if pair.fused.jkr && self.effects.get(e).is_some_and(|f| f.jkr_attached) {
+            Fast::General
+        } else {
+            Fast::Apart
+        }
+    }
+
+    /// After the fused law evaluated entry `e` of `pair`: a touching JKR contact is attached
+    /// (its neck will hold beyond touching), as the checked term records it.
+    #[inline(always)]
+    fn note_jkr_attached(&mut self, pair: &PairParams<S>, e: usize) {
+        if pair.fused.jkr {
+            if let Some(f) = self.effects.get_mut(e) {
+                *f = EffectHistory {
+                    jkr_attached: true,
+                    ..EffectHistory::default()
+                };
+            }
+        }
     }
 
     /// The fast path of a sphere–wall entry (see [`ContactPart::sphere_fast`]): the wall
@@ -312,6 +341,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
             partner: key | LIVE_FLAG,
             delta: delta.map(S::from_fast),
         };
+        self.note_jkr_attached(pair, e);
         Fast::Done
     }
 

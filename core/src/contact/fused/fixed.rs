@@ -335,8 +335,21 @@ pub fn evaluate(
     let root_am = sqrt_coarse(a as u128 * m_star as u128);
 
     // Normal force: Hertz (4/3)E*·a·α minus damping, clipped at zero (eqs. (3), (4)).
-    let mut f_n = mul_wide(mul_wide(kn, a, STATE), alpha, STATE)
-        - mul_wide(mul_wide(cn, root_am, STATE), vn, STATE);
+    // JKR's repulsive force replaces Hertz's; its adhesion is subtracted from the force last
+    // ([`super::jkr`], the generic law's order).
+    let (elastic, attraction) = if p.jkr {
+        let (rep, adh) = super::jkr::force(
+            FxFast::from_raw(alpha),
+            c.r_star,
+            p.jkr_c,
+            p.four_thirds_e_star,
+            p.jkr_adhesion,
+        )?;
+        (rep.raw(), adh.raw())
+    } else {
+        (mul_wide(mul_wide(kn, a, STATE), alpha, STATE), 0)
+    };
+    let mut f_n = elastic - mul_wide(mul_wide(cn, root_am, STATE), vn, STATE);
     if f_n < 0 {
         f_n = 0;
     }
@@ -378,7 +391,7 @@ pub fn evaluate(
     }
 
     // Loads: force on j, torques about each centre of mass, CDT rolling magnitudes (eq. (7)).
-    let force: [i64; 3] = each3!(|k| mul_wide(n30[k], f_n, UNIT) + f_t[k]);
+    let force: [i64; 3] = each3!(|k| mul_wide(n30[k], f_n - attraction, UNIT) + f_t[k]);
     let tau = cross_wide(n30, f_t, UNIT);
     let mut torque_i: [i64; 3] = each3!(|k| mul_wide(tau[k], li, STATE));
     let mut torque_j: [i64; 3] = if li == lj {
@@ -417,7 +430,7 @@ pub fn evaluate(
 mod tests {
     use super::*;
     use crate::contact::fused::evaluate as evaluate_f64;
-    use crate::contact::fused::random_contacts::{contact, test_pairs, Stream};
+    use crate::contact::fused::random_contacts::{contact, jkr_pairs, test_pairs, Stream};
     use crate::num::Scalar;
 
     /// Absolute part of the tolerance on forces (N) and history (mm): a dozen Q32.32 units of
@@ -440,6 +453,10 @@ mod tests {
     /// margin.
     const RELATIVE: f64 = 2e-6;
 
+    /// Units of Q.32 to which fixed point evaluates JKR's g(x) (three rounded terms): x is
+    /// off by up to this many units over g′(x) ([`super::super::jkr`]'s tests).
+    const JKR_G_UNITS: f64 = 4.0;
+
     /// This kernel against the f64 law on 200 000 random contacts (spheres and walls,
     /// single and clump spheres, soft and stiff pairs): every force, torque, rolling torque and
     /// new history component agrees within [`RELATIVE`] of the largest component of its vector,
@@ -447,8 +464,30 @@ mod tests {
     /// [`HISTORY_ROUNDING_MM`]) moves it by, plus [`FORCE_ABS`] or [`TORQUE_ABS`].
     #[test]
     fn agrees_with_the_f64_law_inside_its_error_budget() {
-        let mut s = Stream(0x2545_F491_4F6C_DD1D);
-        let pairs = test_pairs();
+        let inside = agreement(&test_pairs(), 0x2545_F491_4F6C_DD1D);
+        // Nearly every random contact lies inside the envelope.
+        assert!(
+            inside > 190_000,
+            "only {inside} contacts inside the envelope"
+        );
+    }
+
+    /// The same with JKR cohesion on the pairs (sticky soil on soil and on steel): the budget
+    /// adds what the Q.32 Newton root of JKR's contact radius moves the normal force by
+    /// ([`JKR_G_UNITS`]).
+    #[test]
+    fn with_jkr_agrees_with_the_f64_law_inside_its_error_budget() {
+        let inside = agreement(&jkr_pairs(), 0x2545_F491_4F6C_DD1D);
+        assert!(
+            inside > 190_000,
+            "only {inside} contacts inside the envelope"
+        );
+    }
+
+    /// Check 200 000 random contacts of `pairs` (see above); returns how many lay inside the
+    /// envelope.
+    fn agreement(pairs: &[(FusedPair<f64>, bool); 3], seed: u64) -> usize {
+        let mut s = Stream(seed);
         let mut inside = 0;
         for k in 0..200_000 {
             let (p, stiff) = pairs[k % 3];
@@ -473,8 +512,11 @@ mod tests {
             // The Q.32 history's rounding times the tangential stiffness 8G*·a.
             let st = p.eight_g_star * libm::sqrt(c.r_star * alpha);
             let history_abs = st * HISTORY_ROUNDING_MM;
-            let (force_abs, torque_abs) =
-                (FORCE_ABS + history_abs, TORQUE_ABS + LEVER_MM * history_abs);
+            let jkr_abs = jkr_normal_error(&p, &c, alpha);
+            let (force_abs, torque_abs) = (
+                FORCE_ABS + history_abs + jkr_abs,
+                TORQUE_ABS + LEVER_MM * (history_abs + jkr_abs),
+            );
             let check = |name: &str, g: Vec3<FxFast>, w: Vec3<f64>, abs: f64| {
                 let scale = w.x.abs().max(w.y.abs()).max(w.z.abs());
                 let err = (g.map(|x| x.to_f64()) - w).map(|x| x.abs());
@@ -482,7 +524,7 @@ mod tests {
                 let tol = rel * scale + abs;
                 assert!(
                     e <= tol,
-                    "{name} off by {e:e} (tolerance {tol:e}) in case {k}: {g:?} vs {w:?}; {c:?}"
+                    "{name} off by {e:e} (tolerance {tol:e}) in case {k}: {g:?} vs {w:?}; {c:?}; α {alpha:e}, JKR {jkr_abs:e}"
                 );
             };
             let roll = |g: FxFast, w: f64| g.to_f64() - w;
@@ -490,7 +532,12 @@ mod tests {
             check("torque i", got.torque_i, want.torque_i, torque_abs);
             check("torque j", got.torque_j, want.torque_j, torque_abs);
             // A sliding contact's history is μs·Fn/St: the Q.32 limit's rounding over St.
-            check("history", d_fix, d_ref, FORCE_ABS + 2.0 * FORCE_UNIT_N / st);
+            check(
+                "history",
+                d_fix,
+                d_ref,
+                FORCE_ABS + (2.0 * FORCE_UNIT_N + p.friction * jkr_abs) / st,
+            );
             for (g, w) in [(got.roll_i, want.roll_i), (got.roll_j, want.roll_j)] {
                 assert!(
                     roll(g, w).abs() <= rel * w.abs() + torque_abs,
@@ -498,10 +545,37 @@ mod tests {
                 );
             }
         }
-        // Nearly every random contact lies inside the envelope.
-        assert!(
-            inside > 190_000,
-            "only {inside} contacts inside the envelope"
-        );
+        inside
+    }
+
+    /// How far fixed point's normal force may lie from f64's beyond the base budget with JKR
+    /// on, N (zero without JKR), in absolute terms: what matters where JKR's repulsive force,
+    /// large even at a vanishing overlap, nearly cancels the normal damping (Fn, and with it
+    /// the Coulomb limit, is then a small difference of two large terms).
+    /// - JKR: x = √a off by [`JKR_G_UNITS`]·2^-32/g′(x) moves the repulsive force (∝ x⁶) six
+    ///   times and the adhesive (∝ x³) three times its relative error.
+    /// - Damping: ∝ √(√(R*α)·m*), so the overlap's rounding moves it by a quarter of
+    ///   [`OVERLAP_ROUNDING_MM`]/α of itself, and the coarse roots by 2^-27.
+    fn jkr_normal_error(p: &FusedPair<f64>, c: &FusedContact<f64>, alpha: f64) -> f64 {
+        if !p.jkr {
+            return 0.0;
+        }
+        let (k, a) = (p.four_thirds_e_star, p.jkr_adhesion);
+        let (rep, adh) = crate::contact::fused::jkr::force(alpha, c.r_star, p.jkr_c, k, a)
+            .expect("f64 has no envelope");
+        let x3 = adh / a;
+        let slope = 4.0 * x3 - p.jkr_c * c.r_star;
+        let dx_x = JKR_G_UNITS * 2f64.powi(-32) / slope / libm::cbrt(x3);
+        // The normal contact velocity, as the law forms it (levers Rᵢ − α/2, Rⱼ − α/2).
+        let (n, r_j) = match c.geometry {
+            Geometry::Spheres { d, r_j, .. } => (d.scale(1.0 / d.norm()), r_j),
+            Geometry::Wall { normal, .. } => (normal, alpha),
+        };
+        let spin = c.spin_i.scale(c.r_i - alpha / 2.0) + c.spin_j.scale(r_j - alpha / 2.0);
+        let vn = (c.v_centres - spin.cross(n)).dot(n);
+        let root_am = libm::sqrt(libm::sqrt(c.r_star * alpha) * c.m_star);
+        let damping = (p.normal_damping * root_am * vn).abs();
+        let damping_abs = damping * (0.25 * OVERLAP_ROUNDING_MM / alpha + 2f64.powi(-27));
+        (6.0 * rep + 3.0 * adh) * dx_x + damping_abs
     }
 }

@@ -2,7 +2,9 @@
 //! no-attraction clip, Mindlin tangential spring with damping and the Coulomb limit, and CDT
 //! rolling friction (seed 000 eqs. (1)–(7), DESIGN §2): the same law as the terms of this
 //! module, written for speed. Almost every contact of a pod bed takes this path; a pair with
-//! any optional effect, or a term switched off other than damping or rolling, takes the terms.
+//! any optional effect but JKR cohesion, or a term switched off other than damping or
+//! rolling, takes the terms. A JKR pair ([`jkr`]: the soil of a field) takes it while its
+//! overlap is positive; its neck, held beyond touching, takes the terms.
 //!
 //! What makes it fast:
 //! - **Torques about sphere centres.** The contact point lies at c = rᵢ + n̂·Lᵢ = rⱼ − n̂·Lⱼ
@@ -54,7 +56,8 @@
 //! use arachis_core::num::{Scalar, Vec3};
 //! // Pod on pod, 0.02 mm overlap, at rest: the Hertz force (4/3)E*·√(R*α)·α.
 //! let p = FusedPair::<f64> { eligible: true, four_thirds_e_star: 6.7, normal_damping: 0.0,
-//!     eight_g_star: 24.0, tangential_damping: 0.0, friction: 0.8, rolling_friction: 0.0 };
+//!     eight_g_star: 24.0, tangential_damping: 0.0, friction: 0.8, rolling_friction: 0.0,
+//!     jkr: false, jkr_c: 0.0, jkr_adhesion: 0.0 };
 //! let c = FusedContact {
 //!     geometry: Geometry::Wall { normal: Vec3::new(0.0, 0.0, 1.0), overlap: 0.02 },
 //!     r_i: 4.0, r_star: 2.0, m_star: 0.08, v_centres: Vec3::ZERO, spin_i: Vec3::ZERO,
@@ -66,6 +69,7 @@
 //! ```
 
 pub mod fixed;
+pub mod jkr;
 #[cfg(test)]
 pub(crate) mod random_contacts;
 
@@ -119,6 +123,13 @@ pub struct FusedPair<S> {
     pub friction: S,
     /// CDT rolling friction μr (0 when off).
     pub rolling_friction: S,
+    /// Whether JKR cohesion acts on top of the base law ([`jkr`]): its repulsive force
+    /// replaces Hertz's and its adhesive force is subtracted last, as the checked terms do.
+    pub jkr: bool,
+    /// JKR's c = √(2πΓ/E*), √mm (0 when off).
+    pub jkr_c: S,
+    /// JKR's √(8πΓE*), N/mm^{3/2} (0 when off).
+    pub jkr_adhesion: S,
 }
 
 impl<S: Scalar> FusedPair<S> {
@@ -139,6 +150,9 @@ impl<S: Scalar> FusedPair<S> {
             tangential_damping: f(self.tangential_damping),
             friction: f(self.friction),
             rolling_friction: f(self.rolling_friction),
+            jkr: self.jkr,
+            jkr_c: f(self.jkr_c),
+            jkr_adhesion: f(self.jkr_adhesion),
         }
     }
 }
@@ -283,6 +297,8 @@ struct Lane<T> {
     root_am: T,
     f_n: T,
     f_t: Vec3<T>,
+    /// JKR's adhesive force, N (0 without JKR), subtracted from the normal force last.
+    attraction: T,
 }
 
 #[inline(always)]
@@ -406,7 +422,22 @@ fn forces<T: Envelope>(
     let n = l.normal;
     let bounded = bounded::<T>();
     let (damp_n, damp_n_in) = (p.normal_damping * l.root_am).mul_within(l.vn, PRODUCT_BITS);
-    let mut f_n = p.four_thirds_e_star * (l.a * l.overlap) - damp_n;
+    // JKR's repulsive force replaces Hertz's; its adhesion is subtracted after friction and
+    // rolling, as in the checked pipeline ([`crate::pair::PairParams::evaluate`]).
+    let elastic = if p.jkr {
+        let (repulsive, adhesive) = jkr::force(
+            l.overlap,
+            c.r_star,
+            p.jkr_c,
+            p.four_thirds_e_star,
+            p.jkr_adhesion,
+        )?;
+        l.attraction = adhesive;
+        repulsive
+    } else {
+        p.four_thirds_e_star * (l.a * l.overlap)
+    };
+    let mut f_n = elastic - damp_n;
     if f_n < T::ZERO {
         f_n = T::ZERO;
     }
@@ -458,7 +489,7 @@ fn loads<T: Envelope>(c: &FusedContact<T>, p: &FusedPair<T>, l: &Lane<T>) -> Fus
         roll_i = t * lever(l.len_i, c.offset_i, true);
         roll_j = t * lever(l.len_j, c.offset_j, false);
     }
-    let force = n.scale(l.f_n) + l.f_t;
+    let force = n.scale(l.f_n - l.attraction) + l.f_t;
     let tau = n.cross(l.f_t);
     let mut torque_i = tau.scale(l.len_i);
     let mut torque_j = -tau.scale(l.len_j);

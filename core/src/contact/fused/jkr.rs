@@ -1,0 +1,279 @@
+//! JKR cohesion inside the fused law: the normal force of a touching contact (overlap δ > 0)
+//! of a pair with JKR cohesion, split as the checked term [`crate::contact::CohesionJkr`]
+//! splits it (Johnson, *Contact Mechanics* (1985) §5.5):
+//!
+//!   repulsive 4E*a³/(3R*), adhesive √(8πΓE*·a³),  a the root of δ = a²/R* − √(2πΓa/E*).
+//!
+//! The term's algorithm with a cheaper start: with x = √a, Newton's method on the convex
+//! g(x) = x⁴ − cR*·x − R*δ (c = √(2πΓ/E*)) from a point right of its root, stopping on the
+//! first non-decreasing step. The term starts from max(2x_m, (2R*δ)^{1/4}) (x_m³ = cR*/4,
+//! where g′ = 0), which costs a cube root (a Newton loop of its own) and lies far from the
+//! root of a compressed contact; here the start is one Newton step from Hertz's root
+//! (R*δ)^{1/4} wherever that step lands right of the root ([`start`]). Every operation is the
+//! fast arithmetic ([`Envelope`]), whose roots are the coarse ones (2^-28): the force differs
+//! from the term's in the last bits, and the contact is the fused law's (module docs of
+//! [`super`]).
+//!
+//! Envelope (fixed point): δ < 2^[`super::REACH_BITS`] mm and R* < 2^[`super::LENGTH_BITS`] mm
+//! (checked by the caller), c < 2^[`JKR_C_BITS`] √mm and √(8πΓE*) < 2^[`JKR_ADHESION_BITS`]
+//! (checked when the pair is fused). Then cR* < 2^9, R*δ < 2^11 and x_m < 2^2.4; Hertz's root h =
+//! (R*δ)^{1/4} < 2^2.75 and a step from it is taken only up to 2h < 2^3.75; the term's start is
+//! below 2^3.4. So the start and every iterate x < 2^3.75: x⁴ < 2^15, cR*·x < 2^12.75 and 4x³ <
+//! 2^13.25; a³ = x⁶ < 2^22.5; the adhesive force is below 2^27.3 N. The products that can leave the
+//! range, (4/3)E*·x³, its product with x³ and the quotient by R*, are tested exactly
+//! ([`Envelope::mul_within`]; a division that overflows gives the poison, which no bound admits). A
+//! Newton quotient that overflows next to x_m is the poison too, which is negative and ends the
+//! loop.
+//!
+//! ```
+//! use arachis_core::contact::fused::jkr::force;
+//! // Γ 0.1 J/m², E* 10 MPa, R* 2 mm: at δ = 0.01 mm the pair pushes back less than Hertz.
+//! let (g, es, r, delta) = (0.1e-3, 10.0, 2.0, 0.01);
+//! let pi = core::f64::consts::PI;
+//! let (c, adhesion) = ((2.0 * pi * g / es).sqrt(), (8.0 * pi * g * es).sqrt());
+//! let (rep, adh) = force(delta, r, c, 4.0 / 3.0 * es, adhesion).unwrap();
+//! let hertz = 4.0 / 3.0 * es * (r * delta).sqrt() * delta;
+//! assert!(rep - adh < hertz && rep > hertz);
+//! ```
+
+use super::{FORCE_BITS, PRODUCT_BITS};
+use crate::num::Envelope;
+
+/// JKR's c = √(2πΓ/E*) below 2^JKR_C_BITS √mm for the fused law (Γ = 1 J/m² with
+/// E* = 0.4 MPa is c ≈ 0.13).
+pub const JKR_C_BITS: i32 = 4;
+/// √(8πΓE*) below 2^JKR_ADHESION_BITS N/mm^{3/2} for the fused law (Γ = 1 J/m² on steel,
+/// E* ≈ 1.1e5 MPa, is ≈ 53).
+pub const JKR_ADHESION_BITS: i32 = 16;
+/// Newton iterations allowed, as in the checked term (each loop stops earlier, on the first
+/// non-decreasing step).
+const MAX_NEWTON: usize = 48;
+
+/// Whether the fast arithmetic's magnitude tests apply (fixed point only, as in [`super`]).
+#[inline(always)]
+fn bounded<T: Envelope>() -> bool {
+    T::Q32_32
+}
+
+/// The JKR normal force (repulsive, adhesive), N, of a touching contact: overlap `delta`
+/// (mm, > 0), R* `r_star` (mm, > 0), the pair's c (√mm), (4/3)E* `kn` (MPa) and √(8πΓE*)
+/// `adhesion` (N/mm^{3/2}). `None` outside the envelope (module docs).
+#[inline(always)]
+pub fn force<T: Envelope>(delta: T, r_star: T, c: T, kn: T, adhesion: T) -> Option<(T, T)> {
+    let cr = c * r_star;
+    let rd = r_star * delta;
+    let mut x = start(cr, rd);
+    for _ in 0..MAX_NEWTON {
+        let x2 = x * x;
+        let g = x2 * x2 - cr * x - rd;
+        let gp = (x2 * x).mul_int(4) - cr;
+        if g <= T::ZERO || gp <= T::ZERO {
+            break;
+        }
+        let step = g / gp;
+        if step <= T::ZERO {
+            break;
+        }
+        x -= step;
+    }
+    let x3 = x * x * x;
+    // (4/3)E*·x³ first, then ·x³: on a small contact x⁶ alone would keep few bits of Q.32.
+    let (k_x3, k_in) = kn.mul_within(x3, PRODUCT_BITS);
+    let (k_a3, k_a3_in) = k_x3.mul_within(x3, PRODUCT_BITS);
+    let (adh, adh_in) = adhesion.mul_within(x3, FORCE_BITS);
+    let rep = k_a3 / r_star;
+    if bounded::<T>() && !(k_in & k_a3_in & adh_in & rep.within(FORCE_BITS)) {
+        return None;
+    }
+    Some((rep, adh))
+}
+
+/// A Newton start right of the root of g(x) = x⁴ − cR*·x − R*δ (`cr` = cR*, `rd` = R*δ > 0).
+///
+/// Mostly one Newton step from Hertz's root h = (R*δ)^{1/4}: g is convex and g(h) = −cR*·h
+/// < 0, so where g′(h) = 4h³ − cR* > 0 the step lands right of the root, close to it on a
+/// compressed contact (one or two more steps converge), and no cube root is needed. Where
+/// g′(h) ≤ 0 (an overlap small beside the adhesion, h ≤ x_m), the checked term's start
+/// max(2x_m, (2R*δ)^{1/4}), x_m³ = cR*/4.
+#[inline(always)]
+fn start<T: Envelope>(cr: T, rd: T) -> T {
+    let h = rd.sqrt().sqrt();
+    let h3 = h * h * h;
+    let slope = h3.mul_int(4) - cr;
+    if slope > T::ZERO {
+        let g = h3 * h - cr * h - rd;
+        let step = g / slope;
+        // Taken when it moves right by at most h (h³ ≥ cR*/2): it then stays below 2h. A
+        // longer step (h near x_m; in fixed point a quotient that overflowed is the poison,
+        // also refused here) or none at all (rounding) takes the term's start.
+        if step < T::ZERO && step + h >= T::ZERO {
+            return h - step;
+        }
+    }
+    cbrt(cr.mul_pow2(-2))
+        .mul_int(2)
+        .max(rd.mul_int(2).sqrt().sqrt())
+}
+
+/// Cube root of y ≥ 0 by Newton's method from above (t³ is convex for t > 0), as in the
+/// checked term: the start y^{1/4} (y < 1) or y^{1/2} (y ≥ 1) is ≥ y^{1/3}.
+#[inline(always)]
+fn cbrt<T: Envelope>(y: T) -> T {
+    if y <= T::ZERO {
+        return T::ZERO;
+    }
+    let mut t = if y < T::ONE {
+        y.sqrt().sqrt()
+    } else {
+        y.sqrt()
+    };
+    for _ in 0..MAX_NEWTON {
+        let t2 = t * t;
+        let step = (t2 * t - y) / t2.mul_int(3);
+        if step <= T::ZERO {
+            break;
+        }
+        t -= step;
+    }
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::CohesionJkr;
+    use crate::num::{Fx, FxFast, Scalar};
+    use core::f64::consts::PI;
+
+    /// Relative tolerance against the analytic curve: x converges to a few units of its last
+    /// place (Q.32), which a³ carries to about 1e-8; the Q.32 quantisation of δ moves a by
+    /// δq/(2δ) at most (2.3e-10 mm over δ ≥ 1e-5 mm), so 1e-5 with margin.
+    const CURVE_RELATIVE: f64 = 1e-5;
+    /// Relative tolerance of fixed point against f64 on the same inputs, besides the root's
+    /// conditioning ([`G_UNITS`]): the coarse roots (2^-28) move only the Newton start, and
+    /// the products round to Q.32.
+    const RELATIVE: f64 = 1e-6;
+    /// Units of Q.32 (2^-32) to which fixed point evaluates g(x) = x⁴ − cR*·x − R*δ (three
+    /// rounded terms): Newton stops where g is zero to within them, so x is off by up to
+    /// G_UNITS·2^-32/g′(x), which a³ = x⁶ carries sixfold and x³ threefold. On a small soft
+    /// contact (δ 1e-4 mm, g′ 2e-3) that is 1e-5 of the force.
+    const G_UNITS: f64 = 4.0;
+    /// Absolute part, N: a dozen Q32.32 units.
+    const ABSOLUTE_N: f64 = 3e-9;
+
+    /// The pair constants as the checked term quantises them: (c, (4/3)E*, √(8πΓE*)).
+    fn constants(gamma: f64, es: f64) -> (Fx, Fx, Fx) {
+        let t = CohesionJkr::<Fx>::new(gamma, es);
+        (t.c, t.four_thirds_e_star, t.adhesion_coef)
+    }
+
+    /// Along the touching part of the stable branch (a from where δ = 0 up to 3a₀), the fast
+    /// force at the analytic δ(a) against the analytic split 4E*a³/(3R*), √(8πΓE*a³) (Johnson
+    /// 1985 §5.5), in fixed point and in f64, for Γ 0.1–2 J/m², E* 1–1000 MPa, R* 0.5–20 mm.
+    #[test]
+    fn matches_the_analytic_jkr_curve() {
+        let mut n = 0;
+        for &gamma in &[0.1, 2.0] {
+            for &es in &[1.0, 10.0, 1000.0] {
+                let (c, kn, adhesion) = constants(gamma, es);
+                let g = gamma * 1e-3;
+                for &r in &[0.5, 4.0, 20.0] {
+                    // δ(a) = a²/R − √(2πΓa/E*) is zero at a_z = (2πΓR²/E*)^{1/3}.
+                    let a_z = libm::cbrt(2.0 * PI * g * r * r / es);
+                    let a0 = libm::cbrt(9.0 * PI * g * r * r / (2.0 * es));
+                    for k in 1..=60 {
+                        let a = a_z * (1.0 + 1e-3) + (3.0 * a0 - a_z) * k as f64 / 60.0;
+                        let delta = a * a / r - libm::sqrt(2.0 * PI * g * a / es);
+                        if delta < 1e-5 {
+                            continue;
+                        }
+                        let rep = 4.0 * es * a * a * a / (3.0 * r);
+                        let adh = libm::sqrt(8.0 * PI * g * es * a * a * a);
+                        let fx = |x: f64| FxFast::from_f64(x);
+                        let got = force(fx(delta), fx(r), c.into(), kn.into(), adhesion.into())
+                            .expect("inside the envelope");
+                        let got64 = force(delta, r, c.to_f64(), kn.to_f64(), adhesion.to_f64())
+                            .expect("f64 has no envelope");
+                        for (name, g, w) in [
+                            ("repulsive", got.0.to_f64(), rep),
+                            ("adhesive", got.1.to_f64(), adh),
+                            ("repulsive f64", got64.0, rep),
+                            ("adhesive f64", got64.1, adh),
+                        ] {
+                            assert!(
+                                (g - w).abs() <= CURVE_RELATIVE * w + ABSOLUTE_N,
+                                "{name}: Γ {gamma} E* {es} R* {r} a {a}: {g} vs {w}"
+                            );
+                        }
+                        n += 1;
+                    }
+                }
+            }
+        }
+        assert!(n > 500, "only {n} points");
+    }
+
+    /// Fixed point against f64 on the same quantised inputs over a grid of pairs and
+    /// overlaps (δ from 1e-6 to 5 % of R*), and the checked term's split (forces above
+    /// 1e-3 N), whose own x⁶ is one more Q.32 rounding.
+    #[test]
+    fn fixed_point_agrees_with_f64_and_the_checked_term() {
+        let mut n = 0;
+        for &gamma in &[0.01, 0.1, 2.0] {
+            for &es in &[1.0, 10.0, 1000.0] {
+                let term = CohesionJkr::<Fx>::new(gamma, es);
+                let (c, kn, adhesion) = constants(gamma, es);
+                for &r in &[0.5, 2.0, 4.0, 20.0] {
+                    for k in 0..40 {
+                        let delta = r * 1e-6 * libm::pow(5e4, k as f64 / 39.0);
+                        let (d, rs) = (Fx::from_f64(delta), Fx::from_f64(r));
+                        let Some(got) = force::<FxFast>(
+                            d.into(),
+                            rs.into(),
+                            c.into(),
+                            kn.into(),
+                            adhesion.into(),
+                        ) else {
+                            continue;
+                        };
+                        let want = force(
+                            d.to_f64(),
+                            rs.to_f64(),
+                            c.to_f64(),
+                            kn.to_f64(),
+                            adhesion.to_f64(),
+                        )
+                        .expect("f64 has no envelope");
+                        let (rep, adh) = term.force(d, rs).expect("touching: attached");
+                        // The root's conditioning (G_UNITS), from f64's x³ = adhesive/√(8πΓE*).
+                        let x3 = want.1 / adhesion.to_f64();
+                        let x = libm::cbrt(x3);
+                        let slope = 4.0 * x3 - c.to_f64() * rs.to_f64();
+                        let dx_x = G_UNITS * 2f64.powi(-32) / slope / x;
+                        for (g, w, checked, power) in [
+                            (got.0.to_f64(), want.0, rep.to_f64(), 6.0),
+                            (got.1.to_f64(), want.1, adh.to_f64(), 3.0),
+                        ] {
+                            assert!(
+                                (g - w).abs() <= (RELATIVE + power * dx_x) * w + ABSOLUTE_N,
+                                "Γ {gamma} E* {es} R* {r} δ {delta}: {g} vs f64 {w}"
+                            );
+                            // The term rounds x⁶ itself to Q.32: a unit of it times
+                            // (4/3)E*/R* more.
+                            let x6_unit = kn.to_f64() * 2f64.powi(-32) / rs.to_f64();
+                            if w > 1e-3 {
+                                assert!(
+                                    (checked - w).abs()
+                                        <= (CURVE_RELATIVE + power * dx_x) * w + x6_unit,
+                                    "Γ {gamma} E* {es} R* {r} δ {delta}: term {checked} vs {w}"
+                                );
+                            }
+                        }
+                        n += 1;
+                    }
+                }
+            }
+        }
+        assert!(n > 1000, "only {n} contacts inside the envelope");
+    }
+}
