@@ -98,19 +98,7 @@ impl<S: Scalar> CohesionJkr<S> {
         if rd > S::ZERO {
             x = x.max(rd.mul_int(2).sqrt().sqrt());
         }
-        for _ in 0..MAX_NEWTON {
-            let x2 = x * x;
-            let g = x2 * x2 - cr * x - rd;
-            let gp = (x2 * x).mul_int(4) - cr;
-            if g <= S::ZERO || gp <= S::ZERO {
-                break;
-            }
-            let step = g / gp;
-            if step <= S::ZERO {
-                break;
-            }
-            x -= step;
-        }
+        let x = newton_from_right(x, cr, rd);
         let x3 = x * x * x;
         Some((
             self.four_thirds_e_star * (x3 * x3) / r_star,
@@ -119,9 +107,30 @@ impl<S: Scalar> CohesionJkr<S> {
     }
 }
 
+/// The root of g(x) = x⁴ − `cr`·x − `rd` (module docs) by Newton's method from `x`, a point
+/// right of it: g is convex there, so the iterates fall monotonically onto the root; the loop
+/// stops on the first non-decreasing step (or after [`MAX_NEWTON`]).
+#[inline(always)]
+pub(crate) fn newton_from_right<S: Scalar>(mut x: S, cr: S, rd: S) -> S {
+    for _ in 0..MAX_NEWTON {
+        let x2 = x * x;
+        let g = x2 * x2 - cr * x - rd;
+        let gp = (x2 * x).mul_int(4) - cr;
+        if g <= S::ZERO || gp <= S::ZERO {
+            break;
+        }
+        let step = g / gp;
+        if step <= S::ZERO {
+            break;
+        }
+        x -= step;
+    }
+    x
+}
+
 /// Cube root of y ≥ 0 by Newton's method from above (t³ is convex for t > 0): the start
 /// y^{1/4} (y < 1) or y^{1/2} (y ≥ 1) is ≥ y^{1/3}.
-fn cbrt<S: Scalar>(y: S) -> S {
+pub(crate) fn cbrt<S: Scalar>(y: S) -> S {
     if y <= S::ZERO {
         return S::ZERO;
     }

@@ -37,6 +37,7 @@
 //! ```
 
 use super::{FORCE_BITS, PRODUCT_BITS};
+use crate::contact::cohesion_jkr::{cbrt, newton_from_right};
 use crate::num::Envelope;
 
 /// JKR's c = √(2πΓ/E*) below 2^JKR_C_BITS √mm for the fused law (Γ = 1 J/m² with
@@ -45,9 +46,6 @@ pub const JKR_C_BITS: i32 = 4;
 /// √(8πΓE*) below 2^JKR_ADHESION_BITS N/mm^{3/2} for the fused law (Γ = 1 J/m² on steel,
 /// E* ≈ 1.1e5 MPa, is ≈ 53).
 pub const JKR_ADHESION_BITS: i32 = 16;
-/// Newton iterations allowed, as in the checked term (each loop stops earlier, on the first
-/// non-decreasing step).
-const MAX_NEWTON: usize = 48;
 
 /// Whether the fast arithmetic's magnitude tests apply (fixed point only, as in [`super`]).
 #[inline(always)]
@@ -62,20 +60,7 @@ fn bounded<T: Envelope>() -> bool {
 pub fn force<T: Envelope>(delta: T, r_star: T, c: T, kn: T, adhesion: T) -> Option<(T, T)> {
     let cr = c * r_star;
     let rd = r_star * delta;
-    let mut x = start(cr, rd);
-    for _ in 0..MAX_NEWTON {
-        let x2 = x * x;
-        let g = x2 * x2 - cr * x - rd;
-        let gp = (x2 * x).mul_int(4) - cr;
-        if g <= T::ZERO || gp <= T::ZERO {
-            break;
-        }
-        let step = g / gp;
-        if step <= T::ZERO {
-            break;
-        }
-        x -= step;
-    }
+    let x = newton_from_right(start(cr, rd), cr, rd);
     let x3 = x * x * x;
     // (4/3)E*·x³ first, then ·x³: on a small contact x⁶ alone would keep few bits of Q.32.
     let (k_x3, k_in) = kn.mul_within(x3, PRODUCT_BITS);
@@ -113,29 +98,6 @@ fn start<T: Envelope>(cr: T, rd: T) -> T {
     cbrt(cr.mul_pow2(-2))
         .mul_int(2)
         .max(rd.mul_int(2).sqrt().sqrt())
-}
-
-/// Cube root of y ≥ 0 by Newton's method from above (t³ is convex for t > 0), as in the
-/// checked term: the start y^{1/4} (y < 1) or y^{1/2} (y ≥ 1) is ≥ y^{1/3}.
-#[inline(always)]
-fn cbrt<T: Envelope>(y: T) -> T {
-    if y <= T::ZERO {
-        return T::ZERO;
-    }
-    let mut t = if y < T::ONE {
-        y.sqrt().sqrt()
-    } else {
-        y.sqrt()
-    };
-    for _ in 0..MAX_NEWTON {
-        let t2 = t * t;
-        let step = (t2 * t - y) / t2.mul_int(3);
-        if step <= T::ZERO {
-            break;
-        }
-        t -= step;
-    }
-    t
 }
 
 #[cfg(test)]
