@@ -43,6 +43,9 @@ pub struct ContactState<S> {
     /// `true` while a JKR contact ([`super::CohesionJkr`]) is attached: it then holds down to
     /// the negative overlap of the JKR separation. `false` otherwise.
     pub jkr_attached: bool,
+    /// √a of the JKR contact radius a that the fused law found at the contact's last step,
+    /// √mm: where its Newton loop starts next ([`super::fused::jkr`]); 0 when none.
+    pub jkr_root: S,
 }
 
 /// One neighbour-list entry: partner key and tangential history.
@@ -66,6 +69,8 @@ pub struct EffectHistory<S> {
     pub roll_torque: Vec3<S>,
     /// The JKR neck flag ([`ContactState::jkr_attached`]).
     pub jkr_attached: bool,
+    /// √a of the last JKR contact radius, √mm ([`ContactState::jkr_root`]).
+    pub jkr_root: S,
 }
 
 impl<S: Scalar> ContactState<S> {
@@ -79,6 +84,7 @@ impl<S: Scalar> ContactState<S> {
             roll_angle: e.roll_angle,
             roll_torque: e.roll_torque,
             jkr_attached: e.jkr_attached,
+            jkr_root: e.jkr_root,
         }
     }
 
@@ -90,6 +96,7 @@ impl<S: Scalar> ContactState<S> {
             roll_angle: self.roll_angle,
             roll_torque: self.roll_torque,
             jkr_attached: self.jkr_attached,
+            jkr_root: self.jkr_root,
         }
     }
 }

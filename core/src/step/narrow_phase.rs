@@ -28,7 +28,7 @@ use super::parts::{widen, PairTable};
 use super::prefetch::{prefetch_record, worth_hinting};
 use crate::body::{Body, BodyForce, Sphere};
 use crate::bond::arena::BondedPairs;
-use crate::contact::fused::{evaluate_fast, FusedContact, FusedLoad, Geometry};
+use crate::contact::fused::{evaluate_fast_jkr, FusedContact, FusedLoad, Geometry};
 use crate::contact::{ContactKinematics, ContactState, EffectHistory, NeighbourEntry};
 use crate::error::{Other, Stage, StepError};
 use crate::num::{Envelope, Scalar, Vec3};
@@ -133,10 +133,14 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
                         let pair = touch.pair(sh);
                         if pair.fused.eligible {
                             let mut delta = state.delta.map(S::to_fast);
+                            let mut root = state.jkr_root.to_fast();
                             let c = touch.fused_contact(sh);
-                            if let Some(load) = evaluate_fast(&c, &pair.fused.fast(), &mut delta) {
+                            let fused = pair.fused.fast();
+                            if let Some(load) = evaluate_fast_jkr(&c, &fused, &mut delta, &mut root)
+                            {
                                 touch.state.delta = delta.map(S::from_fast);
                                 touch.state.jkr_attached |= pair.fused.jkr;
+                                touch.state.jkr_root = S::from_fast(root);
                                 self.apply_touch(&touch, &load_of(&load));
                                 self.write(e, key, &touch.state, true);
                                 continue;
@@ -163,8 +167,9 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
     }
 
     /// The fast path of a sphere–sphere entry (owner sphere `i`, record `si`, partner sphere
-    /// `j`): the touching test and, for a pair that uses only the base law, the fused law
-    /// ([`evaluate_fast`]) on the spheres' motion snapshots, in [`Scalar::Fast`] arithmetic.
+    /// `j`): the touching test and, for a pair that uses only the base law (with JKR
+    /// cohesion or not), the fused law ([`crate::contact::fused::evaluate_fast_jkr`]) on the
+    /// spheres' motion snapshots, in [`Scalar::Fast`] arithmetic.
     /// The centre difference cannot overflow: a listed pair was within reach plus the skin
     /// at the last rebuild and has moved less than the skin since. A bonded pair is apart, as
     /// on the general path. Anything else (optional effects, an undefined pair, a contact
@@ -237,7 +242,8 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
             dt: f(sh.dt),
         };
         let mut delta = entry.delta.map(f);
-        let Some(load) = evaluate_fast(&c, &pair.fused.fast(), &mut delta) else {
+        let mut root = self.last_jkr_root(pair, e);
+        let Some(load) = evaluate_fast_jkr(&c, &pair.fused.fast(), &mut delta, &mut root) else {
             return Fast::General;
         };
         let load = load_of(&load);
@@ -252,7 +258,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
             partner: j as u32 | LIVE_FLAG,
             delta: delta.map(S::from_fast),
         };
-        self.note_jkr_attached(pair, e);
+        self.note_jkr_attached(pair, e, root);
         Fast::Done
     }
 
@@ -268,14 +274,26 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         }
     }
 
-    /// After the fused law evaluated entry `e` of `pair`: a touching JKR contact is attached
-    /// (its neck will hold beyond touching), as the checked term records it.
+    /// The JKR root x = √a of entry `e` at its last step, where the fused law's Newton loop
+    /// starts ([`crate::contact::fused::jkr`]); zero for a pair without JKR.
     #[inline(always)]
-    fn note_jkr_attached(&mut self, pair: &PairParams<S>, e: usize) {
+    fn last_jkr_root(&self, pair: &PairParams<S>, e: usize) -> S::Fast {
+        match self.effects.get(e) {
+            Some(f) if pair.fused.jkr => f.jkr_root.to_fast(),
+            _ => S::Fast::ZERO,
+        }
+    }
+
+    /// After the fused law evaluated entry `e` of `pair`: a touching JKR contact is attached
+    /// (its neck will hold beyond touching), as the checked term records it, and keeps its
+    /// root for the next step's start.
+    #[inline(always)]
+    fn note_jkr_attached(&mut self, pair: &PairParams<S>, e: usize, root: S::Fast) {
         if pair.fused.jkr {
             if let Some(f) = self.effects.get_mut(e) {
                 *f = EffectHistory {
                     jkr_attached: true,
+                    jkr_root: S::from_fast(root),
                     ..EffectHistory::default()
                 };
             }
@@ -326,7 +344,8 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
             dt: f(sh.dt),
         };
         let mut delta = entry.delta.map(f);
-        let Some(load) = evaluate_fast(&c, &pair.fused.fast(), &mut delta) else {
+        let mut root = self.last_jkr_root(pair, e);
+        let Some(load) = evaluate_fast_jkr(&c, &pair.fused.fast(), &mut delta, &mut root) else {
             return Fast::General;
         };
         let load = load_of(&load);
@@ -341,7 +360,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
             partner: key | LIVE_FLAG,
             delta: delta.map(S::from_fast),
         };
-        self.note_jkr_attached(pair, e);
+        self.note_jkr_attached(pair, e, root);
         Fast::Done
     }
 

@@ -50,6 +50,9 @@ impl<S: Scalar> World<'_, S> {
                 if c.state.jkr_attached {
                     h.u64(1);
                 }
+                if c.state.jkr_root != S::ZERO {
+                    h.s(c.state.jkr_root);
+                }
             }
         }
         h.u64(self.walls.len() as u64);

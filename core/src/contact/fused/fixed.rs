@@ -242,6 +242,19 @@ pub fn evaluate(
     p: &FusedPair<FxFast>,
     delta: &mut Vec3<FxFast>,
 ) -> Option<FusedLoad<FxFast>> {
+    let mut no_root = FxFast::from_raw(0);
+    evaluate_jkr(c, p, delta, &mut no_root)
+}
+
+/// [`evaluate`] with JKR's root x = √a (√mm): in, the last step's (0: none); out, this
+/// step's; like `delta`, updated only on success ([`super::evaluate_fast_jkr`]).
+#[inline(always)]
+pub fn evaluate_jkr(
+    c: &FusedContact<FxFast>,
+    p: &FusedPair<FxFast>,
+    delta: &mut Vec3<FxFast>,
+    jkr_root: &mut FxFast,
+) -> Option<FusedLoad<FxFast>> {
     let (kn, kt) = (p.four_thirds_e_star.raw(), p.eight_g_star.raw());
     let (cn, ct) = (p.normal_damping.raw(), p.tangential_damping.raw());
     let ri = c.r_i.raw();
@@ -337,17 +350,18 @@ pub fn evaluate(
     // Normal force: Hertz (4/3)E*·a·α minus damping, clipped at zero (eqs. (3), (4)).
     // JKR's repulsive force replaces Hertz's; its adhesion is subtracted from the force last
     // ([`super::jkr`], the generic law's order).
-    let (elastic, attraction) = if p.jkr {
-        let (rep, adh) = super::jkr::force(
+    let (elastic, attraction, root) = if p.jkr {
+        let (rep, adh, root) = super::jkr::force(
             FxFast::from_raw(alpha),
             c.r_star,
             p.jkr_c,
             p.four_thirds_e_star,
             p.jkr_adhesion,
+            *jkr_root,
         )?;
-        (rep.raw(), adh.raw())
+        (rep.raw(), adh.raw(), root)
     } else {
-        (mul_wide(mul_wide(kn, a, STATE), alpha, STATE), 0)
+        (mul_wide(mul_wide(kn, a, STATE), alpha, STATE), 0, *jkr_root)
     };
     let mut f_n = elastic - mul_wide(mul_wide(cn, root_am, STATE), vn, STATE);
     if f_n < 0 {
@@ -417,6 +431,7 @@ pub fn evaluate(
         }
     }
     *delta = fx(d1);
+    *jkr_root = root;
     Some(FusedLoad {
         force: fx(force),
         torque_i: fx(torque_i),
@@ -561,7 +576,7 @@ mod tests {
             return 0.0;
         }
         let (k, a) = (p.four_thirds_e_star, p.jkr_adhesion);
-        let (rep, adh) = crate::contact::fused::jkr::force(alpha, c.r_star, p.jkr_c, k, a)
+        let (rep, adh, _) = crate::contact::fused::jkr::force(alpha, c.r_star, p.jkr_c, k, a, 0.0)
             .expect("f64 has no envelope");
         let x3 = adh / a;
         let slope = 4.0 * x3 - p.jkr_c * c.r_star;

@@ -8,22 +8,24 @@
 //! g(x) = x⁴ − cR*·x − R*δ (c = √(2πΓ/E*)) from a point right of its root, stopping on the
 //! first non-decreasing step. The term starts from max(2x_m, (2R*δ)^{1/4}) (x_m³ = cR*/4,
 //! where g′ = 0), which costs a cube root (a Newton loop of its own) and lies far from the
-//! root of a compressed contact; here the start is one Newton step from Hertz's root
-//! (R*δ)^{1/4} wherever that step lands right of the root ([`start`]). Every operation is the
+//! root of a compressed contact; here the start is the contact's root at its last step (kept
+//! in its effect history: one or two Newton steps then converge), else one Newton step from
+//! Hertz's root (R*δ)^{1/4} ([`start`]). Every operation is the
 //! fast arithmetic ([`Envelope`]), whose roots are the coarse ones (2^-28): the force differs
 //! from the term's in the last bits, and the contact is the fused law's (module docs of
 //! [`super`]).
 //!
 //! Envelope (fixed point): δ < 2^[`super::REACH_BITS`] mm and R* < 2^[`super::LENGTH_BITS`] mm
 //! (checked by the caller), c < 2^[`JKR_C_BITS`] √mm and √(8πΓE*) < 2^[`JKR_ADHESION_BITS`]
-//! (checked when the pair is fused). Then cR* < 2^9, R*δ < 2^11 and x_m < 2^2.4; Hertz's root h =
-//! (R*δ)^{1/4} < 2^2.75 and a step from it is taken only up to 2h < 2^3.75; the term's start is
-//! below 2^3.4. So the start and every iterate x < 2^3.75: x⁴ < 2^15, cR*·x < 2^12.75 and 4x³ <
-//! 2^13.25; a³ = x⁶ < 2^22.5; the adhesive force is below 2^27.3 N. The products that can leave the
-//! range, (4/3)E*·x³, its product with x³ and the quotient by R*, are tested exactly
-//! ([`Envelope::mul_within`]; a division that overflows gives the poison, which no bound admits). A
-//! Newton quotient that overflows next to x_m is the poison too, which is negative and ends the
-//! loop.
+//! (checked when the pair is fused). Then cR* < 2^9, R*δ < 2^11 and x_m < 2^2.4, and the root
+//! lies below the term's start, 2^3.4. A start is a point right of the root: the term's start,
+//! a point below 2^4 taken as it is (the last root is used only below 2^4), or a Newton step
+//! from a point p below 2^4 taken only up to 2p; so the start and every iterate x < 2^5:
+//! x⁴ < 2^20, cR*·x < 2^14 and 4x³ < 2^17. At the root, a³ = x⁶ < 2^20.4 and the adhesive
+//! force is below 2^26.2 N. The products that can leave the range, (4/3)E*·x³, its product
+//! with x³ and the quotient by R*, are tested exactly ([`Envelope::mul_within`]; a division
+//! that overflows gives the poison, which no bound admits). A Newton quotient that overflows
+//! next to x_m is the poison too, which is negative and ends the loop.
 //!
 //! ```
 //! use arachis_core::contact::fused::jkr::force;
@@ -31,9 +33,12 @@
 //! let (g, es, r, delta) = (0.1e-3, 10.0, 2.0, 0.01);
 //! let pi = core::f64::consts::PI;
 //! let (c, adhesion) = ((2.0 * pi * g / es).sqrt(), (8.0 * pi * g * es).sqrt());
-//! let (rep, adh) = force(delta, r, c, 4.0 / 3.0 * es, adhesion).unwrap();
+//! let (rep, adh, x) = force(delta, r, c, 4.0 / 3.0 * es, adhesion, 0.0).unwrap();
 //! let hertz = 4.0 / 3.0 * es * (r * delta).sqrt() * delta;
 //! assert!(rep - adh < hertz && rep > hertz);
+//! // Started from that root, the next step finds the same force.
+//! let (rep2, _, _) = force(delta, r, c, 4.0 / 3.0 * es, adhesion, x).unwrap();
+//! assert!((rep2 - rep).abs() < 1e-12 * rep);
 //! ```
 
 use super::{FORCE_BITS, PRODUCT_BITS};
@@ -53,14 +58,23 @@ fn bounded<T: Envelope>() -> bool {
     T::Q32_32
 }
 
-/// The JKR normal force (repulsive, adhesive), N, of a touching contact: overlap `delta`
-/// (mm, > 0), R* `r_star` (mm, > 0), the pair's c (√mm), (4/3)E* `kn` (MPa) and √(8πΓE*)
-/// `adhesion` (N/mm^{3/2}). `None` outside the envelope (module docs).
+/// The JKR normal force (repulsive, adhesive), N, of a touching contact, and the root x = √a
+/// (√mm) it found: overlap `delta` (mm, > 0), R* `r_star` (mm, > 0), the pair's c (√mm),
+/// (4/3)E* `kn` (MPa) and √(8πΓE*) `adhesion` (N/mm^{3/2}); `last_root`, the root of the
+/// contact's last step (0: none), is where Newton's method starts if it can ([`start`]).
+/// `None` outside the envelope (module docs).
 #[inline(always)]
-pub fn force<T: Envelope>(delta: T, r_star: T, c: T, kn: T, adhesion: T) -> Option<(T, T)> {
+pub fn force<T: Envelope>(
+    delta: T,
+    r_star: T,
+    c: T,
+    kn: T,
+    adhesion: T,
+    last_root: T,
+) -> Option<(T, T, T)> {
     let cr = c * r_star;
     let rd = r_star * delta;
-    let x = newton_from_right(start(cr, rd), cr, rd);
+    let x = newton_from_right(start(cr, rd, last_root), cr, rd);
     let x3 = x * x * x;
     // (4/3)E*·x³ first, then ·x³: on a small contact x⁶ alone would keep few bits of Q.32.
     let (k_x3, k_in) = kn.mul_within(x3, PRODUCT_BITS);
@@ -70,34 +84,58 @@ pub fn force<T: Envelope>(delta: T, r_star: T, c: T, kn: T, adhesion: T) -> Opti
     if bounded::<T>() && !(k_in & k_a3_in & adh_in & rep.within(FORCE_BITS)) {
         return None;
     }
-    Some((rep, adh))
+    Some((rep, adh, x))
 }
 
-/// A Newton start right of the root of g(x) = x⁴ − cR*·x − R*δ (`cr` = cR*, `rd` = R*δ > 0).
+/// A Newton start right of the root of g(x) = x⁴ − cR*·x − R*δ (`cr` = cR*, `rd` = R*δ > 0),
+/// the first of these that applies:
+/// - the last step's root `last` (> 0): a contact's overlap changes little in a step, so it
+///   lies next to the new root; taken as it is where g(last) ≥ 0, else after one Newton step;
+/// - one Newton step from Hertz's root h = (R*δ)^{1/4}, where g(h) = −cR*·h < 0, close to the
+///   root on a compressed contact, with no cube root;
+/// - the checked term's start max(2x_m, (2R*δ)^{1/4}), x_m³ = cR*/4 (an overlap small beside
+///   the adhesion, h near x_m).
 ///
-/// Mostly one Newton step from Hertz's root h = (R*δ)^{1/4}: g is convex and g(h) = −cR*·h
-/// < 0, so where g′(h) = 4h³ − cR* > 0 the step lands right of the root, close to it on a
-/// compressed contact (one or two more steps converge), and no cube root is needed. Where
-/// g′(h) ≤ 0 (an overlap small beside the adhesion, h ≤ x_m), the checked term's start
-/// max(2x_m, (2R*δ)^{1/4}), x_m³ = cR*/4.
+/// A Newton step from a point p left of the root (g(p) < 0, g′(p) > 0) lands right of it,
+/// since g is convex; it is taken only when it moves right by at most p, so that the start
+/// stays below 2p.
 #[inline(always)]
-fn start<T: Envelope>(cr: T, rd: T) -> T {
-    let h = rd.sqrt().sqrt();
-    let h3 = h * h * h;
-    let slope = h3.mul_int(4) - cr;
-    if slope > T::ZERO {
-        let g = h3 * h - cr * h - rd;
-        let step = g / slope;
-        // Taken when it moves right by at most h (h³ ≥ cR*/2): it then stays below 2h. A
-        // longer step (h near x_m; in fixed point a quotient that overflowed is the poison,
-        // also refused here) or none at all (rounding) takes the term's start.
-        if step < T::ZERO && step + h >= T::ZERO {
-            return h - step;
+fn start<T: Envelope>(cr: T, rd: T, last: T) -> T {
+    // The last root, where it is inside the iterates' bound (module docs).
+    if last > T::ZERO && (!bounded::<T>() || last.within(LAST_ROOT_BITS)) {
+        if let Some(x) = step_right(last, cr, rd) {
+            return x;
         }
+    }
+    let h = rd.sqrt().sqrt();
+    if let Some(x) = step_right(h, cr, rd) {
+        return x;
     }
     cbrt(cr.mul_pow2(-2))
         .mul_int(2)
         .max(rd.mul_int(2).sqrt().sqrt())
+}
+
+/// Iterates below 2^LAST_ROOT_BITS √mm: a last root beyond (none is, module docs) is not
+/// used as a start.
+const LAST_ROOT_BITS: i32 = 4;
+
+/// `p` itself if g(p) ≥ 0 (right of the root, or on it), else the Newton step from `p` if
+/// g′(p) > 0 and it moves right by at most `p` (module docs of [`start`]); `None` otherwise
+/// (in fixed point a quotient that overflowed is the poison, which is refused too).
+#[inline(always)]
+fn step_right<T: Envelope>(p: T, cr: T, rd: T) -> Option<T> {
+    let p3 = p * p * p;
+    let g = p3 * p - cr * p - rd;
+    let slope = p3.mul_int(4) - cr;
+    if slope <= T::ZERO {
+        return None;
+    }
+    if g >= T::ZERO {
+        return Some(p);
+    }
+    let step = g / slope;
+    (step < T::ZERO && step + p >= T::ZERO).then(|| p - step)
 }
 
 #[cfg(test)]
@@ -152,10 +190,13 @@ mod tests {
                         let rep = 4.0 * es * a * a * a / (3.0 * r);
                         let adh = libm::sqrt(8.0 * PI * g * es * a * a * a);
                         let fx = |x: f64| FxFast::from_f64(x);
-                        let got = force(fx(delta), fx(r), c.into(), kn.into(), adhesion.into())
-                            .expect("inside the envelope");
-                        let got64 = force(delta, r, c.to_f64(), kn.to_f64(), adhesion.to_f64())
-                            .expect("f64 has no envelope");
+                        let zero = FxFast::ZERO;
+                        let got =
+                            force(fx(delta), fx(r), c.into(), kn.into(), adhesion.into(), zero)
+                                .expect("inside the envelope");
+                        let got64 =
+                            force(delta, r, c.to_f64(), kn.to_f64(), adhesion.to_f64(), 0.0)
+                                .expect("f64 has no envelope");
                         for (name, g, w) in [
                             ("repulsive", got.0.to_f64(), rep),
                             ("adhesive", got.1.to_f64(), adh),
@@ -176,8 +217,9 @@ mod tests {
     }
 
     /// Fixed point against f64 on the same quantised inputs over a grid of pairs and
-    /// overlaps (δ from 1e-6 to 5 % of R*), and the checked term's split (forces above
-    /// 1e-3 N), whose own x⁶ is one more Q.32 rounding.
+    /// overlaps (δ from 1e-6 to 5 % of R*), started cold and from the roots of a last step
+    /// 0.1 % more and less compressed; and the checked term's split (forces above 1e-3 N),
+    /// whose own x⁶ is one more Q.32 rounding.
     #[test]
     fn fixed_point_agrees_with_f64_and_the_checked_term() {
         let mut n = 0;
@@ -189,21 +231,33 @@ mod tests {
                     for k in 0..40 {
                         let delta = r * 1e-6 * libm::pow(5e4, k as f64 / 39.0);
                         let (d, rs) = (Fx::from_f64(delta), Fx::from_f64(r));
-                        let Some(got) = force::<FxFast>(
-                            d.into(),
-                            rs.into(),
-                            c.into(),
-                            kn.into(),
-                            adhesion.into(),
-                        ) else {
+                        let fast = |d: Fx, last: FxFast| {
+                            force::<FxFast>(
+                                d.into(),
+                                rs.into(),
+                                c.into(),
+                                kn.into(),
+                                adhesion.into(),
+                                last,
+                            )
+                        };
+                        let Some(cold) = fast(d, FxFast::ZERO) else {
                             continue;
                         };
+                        // Warm starts: the roots of a last step 0.1 % more and less compressed.
+                        let last =
+                            |f: f64| fast(Fx::from_f64(delta * f), FxFast::ZERO).map(|g| g.2);
+                        let warm = [last(1.001), last(0.999)].map(|x| {
+                            x.and_then(|x| fast(d, x))
+                                .expect("a warm start in the envelope")
+                        });
                         let want = force(
                             d.to_f64(),
                             rs.to_f64(),
                             c.to_f64(),
                             kn.to_f64(),
                             adhesion.to_f64(),
+                            0.0,
                         )
                         .expect("f64 has no envelope");
                         let (rep, adh) = term.force(d, rs).expect("touching: attached");
@@ -212,14 +266,19 @@ mod tests {
                         let x = libm::cbrt(x3);
                         let slope = 4.0 * x3 - c.to_f64() * rs.to_f64();
                         let dx_x = G_UNITS * 2f64.powi(-32) / slope / x;
-                        for (g, w, checked, power) in [
-                            (got.0.to_f64(), want.0, rep.to_f64(), 6.0),
-                            (got.1.to_f64(), want.1, adh.to_f64(), 3.0),
-                        ] {
-                            assert!(
-                                (g - w).abs() <= (RELATIVE + power * dx_x) * w + ABSOLUTE_N,
-                                "Γ {gamma} E* {es} R* {r} δ {delta}: {g} vs f64 {w}"
-                            );
+                        for got in [cold, warm[0], warm[1]] {
+                            for (g, w, power) in
+                                [(got.0.to_f64(), want.0, 6.0), (got.1.to_f64(), want.1, 3.0)]
+                            {
+                                assert!(
+                                    (g - w).abs() <= (RELATIVE + power * dx_x) * w + ABSOLUTE_N,
+                                    "Γ {gamma} E* {es} R* {r} δ {delta}: {g} vs f64 {w}"
+                                );
+                            }
+                        }
+                        for (w, checked, power) in
+                            [(want.0, rep.to_f64(), 6.0), (want.1, adh.to_f64(), 3.0)]
+                        {
                             // The term rounds x⁶ itself to Q.32: a unit of it times
                             // (4/3)E*/R* more.
                             let x6_unit = kn.to_f64() * 2f64.powi(-32) / rs.to_f64();

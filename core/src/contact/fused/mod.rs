@@ -271,15 +271,30 @@ pub fn evaluate_fast<T: Envelope>(
     p: &FusedPair<T>,
     delta: &mut Vec3<T>,
 ) -> Option<FusedLoad<T>> {
+    let mut no_root = T::ZERO;
+    evaluate_fast_jkr(c, p, delta, &mut no_root)
+}
+
+/// [`evaluate_fast`] with JKR's root x = √a (√mm; [`jkr`]): in, the contact's root at its
+/// last step (0: none), where the Newton loop starts; out, this step's (left as it was for a
+/// pair without JKR). Untouched, as `delta` is, outside the envelope.
+#[inline(always)]
+pub fn evaluate_fast_jkr<T: Envelope>(
+    c: &FusedContact<T>,
+    p: &FusedPair<T>,
+    delta: &mut Vec3<T>,
+    jkr_root: &mut T,
+) -> Option<FusedLoad<T>> {
     if !T::Q32_32 {
-        return evaluate(c, p, delta);
+        return evaluate_jkr(c, p, delta, jkr_root);
     }
     // The same bits, seen as the integer kernel's type (the conversions compile to nothing).
     let to = |x: T| FxFast::from_raw(x.to_bits() as i64);
     let back = |x: FxFast| T::from_bits(x.raw() as u64);
-    let mut d = delta.map(to);
-    let load = fixed::evaluate(&c.map(to), &p.map(to), &mut d)?;
+    let (mut d, mut root) = (delta.map(to), to(*jkr_root));
+    let load = fixed::evaluate_jkr(&c.map(to), &p.map(to), &mut d, &mut root)?;
     *delta = d.map(back);
+    *jkr_root = back(root);
     Some(load.map(back))
 }
 
@@ -299,6 +314,8 @@ struct Lane<T> {
     f_t: Vec3<T>,
     /// JKR's adhesive force, N (0 without JKR), subtracted from the normal force last.
     attraction: T,
+    /// JKR's root x = √a, √mm: the last step's on the way in, this step's on the way out.
+    jkr_root: T,
 }
 
 #[inline(always)]
@@ -323,7 +340,20 @@ pub fn evaluate<T: Envelope>(
     p: &FusedPair<T>,
     delta: &mut Vec3<T>,
 ) -> Option<FusedLoad<T>> {
+    let mut no_root = T::ZERO;
+    evaluate_jkr(c, p, delta, &mut no_root)
+}
+
+/// [`evaluate`] with JKR's root, as [`evaluate_fast_jkr`] takes and gives it.
+#[inline(always)]
+pub fn evaluate_jkr<T: Envelope>(
+    c: &FusedContact<T>,
+    p: &FusedPair<T>,
+    delta: &mut Vec3<T>,
+    jkr_root: &mut T,
+) -> Option<FusedLoad<T>> {
     let mut l = geometry(c, *delta)?;
+    l.jkr_root = *jkr_root;
     // Contact velocity v_j − v_i at the contact point, and its normal and tangential parts.
     let n = l.normal;
     let spin = c.spin_i.scale(l.len_i) + c.spin_j.scale(l.len_j);
@@ -342,6 +372,7 @@ pub fn evaluate<T: Envelope>(
         }
     }
     *delta = d;
+    *jkr_root = l.jkr_root;
     Some(load)
 }
 
@@ -425,14 +456,16 @@ fn forces<T: Envelope>(
     // JKR's repulsive force replaces Hertz's; its adhesion is subtracted after friction and
     // rolling, as in the checked pipeline ([`crate::pair::PairParams::evaluate`]).
     let elastic = if p.jkr {
-        let (repulsive, adhesive) = jkr::force(
+        let (repulsive, adhesive, root) = jkr::force(
             l.overlap,
             c.r_star,
             p.jkr_c,
             p.four_thirds_e_star,
             p.jkr_adhesion,
+            l.jkr_root,
         )?;
         l.attraction = adhesive;
+        l.jkr_root = root;
         repulsive
     } else {
         p.four_thirds_e_star * (l.a * l.overlap)
