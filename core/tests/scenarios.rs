@@ -12,6 +12,7 @@ mod bad_input;
 mod bond_beam;
 mod bonds;
 mod broad_phase;
+mod checkpoint;
 mod clumps;
 mod cross_check_liggghts;
 mod digest_scenarios;

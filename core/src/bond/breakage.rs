@@ -39,6 +39,15 @@ impl BreakCriterion {
             BreakCriterion::Both => 2,
         }
     }
+
+    /// The criterion of [`BreakCriterion::code`] (any code above 1 is `Both`).
+    pub fn from_code(code: u8) -> Self {
+        match code {
+            0 => BreakCriterion::Normal,
+            1 => BreakCriterion::Tangential,
+            _ => BreakCriterion::Both,
+        }
+    }
 }
 
 /// The two governing stresses of a bond, MPa.

@@ -42,6 +42,7 @@ use crate::contact::{EffectHistory, NeighbourEntry, WALL_PARTNER_FLAG};
 use crate::error::{CapacityKind, Other, SetupError, Stage, StepError};
 use crate::num::{Envelope, Scalar, Vec3};
 use crate::wall::Wall;
+use crate::world::checkpoint::{flag, index, scalar, vec3, CheckpointError, StateWords};
 
 /// Partner-key flag of an entry whose pair touched in the last step and keeps history.
 /// Sphere ids stay below 2^29 (the world refuses larger capacities) and wall keys use
@@ -240,6 +241,81 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
                 &mut self.effects[r]
             },
         }
+    }
+
+    /// Exchange the list as it stands with a checkpoint ([`crate::world::checkpoint`]): when
+    /// it was built and how far it has drifted, and its live half (offsets, entries with
+    /// their contact history, effect history), so that a resumed world rebuilds it when the
+    /// first would have. Offsets and partners are checked against `spheres` and `walls`.
+    pub(crate) fn exchange(
+        &mut self,
+        v: &mut impl StateWords,
+        spheres: u32,
+        walls: u32,
+    ) -> Result<(), CheckpointError> {
+        v.same(self.half as u64, "the contact slots")?;
+        v.same(
+            self.has_effect_history() as u64,
+            "whether effect history is kept",
+        )?;
+        let mut current = self.current as u32;
+        index(v, &mut current, 2, "the list's live half")?;
+        self.current = current as usize;
+        let mut listed = self.listed as u32;
+        index(
+            v,
+            &mut listed,
+            spheres as u64 + 1,
+            "the listed sphere count",
+        )?;
+        self.listed = listed as usize;
+        flag(v, &mut self.valid, "whether the list is valid")?;
+        scalar(v, &mut self.drift)?;
+        scalar(v, &mut self.skin)?;
+        v.word(&mut self.builds)?;
+        let offsets = self.offsets_at(self.current);
+        let offsets = &mut self.index[offsets][..self.listed + 1];
+        let mut last = 0;
+        for o in offsets.iter_mut() {
+            index(v, o, self.half as u64 + 1, "a list offset")?;
+            if *o < last {
+                return Err(CheckpointError::Corrupt {
+                    what: "a list offset (smaller than the one before)",
+                    value: *o as u64,
+                });
+            }
+            last = *o;
+        }
+        let r = self.half_range(self.current);
+        let live = r.start..r.start + last as usize;
+        for e in self.entries[live.clone()].iter_mut() {
+            let mut key = e.partner as u64;
+            v.word(&mut key)?;
+            let partner = key_of(key as u32);
+            let bad = if is_wall(partner) {
+                (partner & !WALL_PARTNER_FLAG) >> 4 >= walls
+            } else {
+                partner >= spheres
+            };
+            if key > u32::MAX as u64 || bad {
+                return Err(CheckpointError::Corrupt {
+                    what: "a contact's partner key",
+                    value: key,
+                });
+            }
+            e.partner = key as u32;
+            vec3(v, &mut e.delta)?;
+        }
+        if self.has_effect_history() {
+            for f in self.effects[live].iter_mut() {
+                scalar(v, &mut f.max_overlap)?;
+                vec3(v, &mut f.roll_angle)?;
+                vec3(v, &mut f.roll_torque)?;
+                flag(v, &mut f.jkr_attached, "a contact's JKR attachment")?;
+                scalar(v, &mut f.jkr_root)?;
+            }
+        }
+        Ok(())
     }
 
     /// Rebuild the list if it is stale, for `spheres` (max radius `max_radius`, mm) and

@@ -33,6 +33,7 @@
 //! ```
 
 mod bonds;
+pub mod checkpoint;
 mod digest;
 mod effects;
 mod setup;
