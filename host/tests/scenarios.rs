@@ -49,6 +49,7 @@ mod drum;
 mod experiments_rigs;
 mod export_liggghts;
 mod field;
+mod field_checkpoint;
 mod field_trial;
 mod golden_c5d1f03;
 mod harvest;

@@ -20,6 +20,11 @@
 //! Files named by `--vtk`, `--picture`, `--section` and `--pod-map` get `_rep<R>` before
 //! their extension. `--pod-map` draws where every pod ended, from above.
 //! `--output FILE` also writes the printed JSON to FILE, whole or not at all.
+//!
+//! `--checkpoint FILE.ckpt` keeps the run's state in FILE (`crate::field::checkpoint`, every
+//! `--checkpoint-minutes` and at the end): the same command run again goes on from it, bit
+//! for bit, so a pass of hours can stop and resume; a replicate already done is not run
+//! again. A checkpoint of other inputs or another seed is refused, with its path.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -31,6 +36,7 @@ use serde::Serialize;
 
 use crate::arena::{OwnedBonds, OwnedStorage};
 use crate::count_limits::{count, MAX_REPLICATES};
+use crate::field::checkpoint::{self, inputs_hash, Header};
 use crate::field::layout::holes;
 use crate::field::picture::write_field_picture;
 use crate::field::soil::fill_fraction;
@@ -38,7 +44,7 @@ use crate::field::FieldSpec;
 use crate::harvest::SEED001_FIELD_LOSS_PERCENT;
 use crate::harvester::loss::LossTally;
 use crate::harvester::picture::{write_pod_map, write_section_picture};
-use crate::harvester::rig::Rig;
+use crate::harvester::rig::{Rig, CHUNK_STEPS};
 use crate::harvester::trial::{summarise, TrialSummary};
 use crate::harvester::HarvesterSpec;
 use crate::io::write_string_atomic;
@@ -92,10 +98,24 @@ pub struct Args {
     /// Also write the printed JSON to FILE (whole or not at all).
     #[arg(long, value_name = "FILE.json")]
     pub output: Option<PathBuf>,
+    /// Keep the run's state in FILE (`arachis::field::checkpoint`), written every
+    /// `--checkpoint-minutes` and when the steps are done; a run whose FILE exists goes on
+    /// from it, bit for bit. With `--replicates`, one file per replicate (`_rep<R>`), so a
+    /// trial stopped half-way resumes where each replicate was.
+    #[arg(long, value_name = "FILE.ckpt")]
+    pub checkpoint: Option<PathBuf>,
+    /// Minutes of wall time between checkpoints.
+    #[arg(long, default_value_t = 10, requires = "checkpoint",
+        value_parser = clap::value_parser!(u64).range(1..=MAX_CHECKPOINT_MINUTES))]
+    pub checkpoint_minutes: u64,
 }
 
 /// Most steps one call runs.
 const MAX_STEPS: u64 = 100_000_000;
+/// Longest time between checkpoints, min (a day).
+const MAX_CHECKPOINT_MINUTES: u64 = 24 * 60;
+/// Seconds in a minute.
+const SECONDS_PER_MINUTE: u64 = 60;
 /// Steps between updates of the progress bar (a whole number of harvester chunks).
 const PROGRESS_STEPS: u64 = 40 * crate::harvester::rig::CHUNK_STEPS;
 
@@ -256,6 +276,7 @@ struct Outputs {
     picture: Option<PathBuf>,
     section: Option<PathBuf>,
     pod_map: Option<PathBuf>,
+    checkpoint: Option<PathBuf>,
 }
 
 impl Outputs {
@@ -282,8 +303,63 @@ impl Outputs {
             picture: name(&args.picture),
             section: name(&args.section),
             pod_map: name(&args.pod_map),
+            checkpoint: name(&args.checkpoint),
         }
     }
+}
+
+/// Goes on from the checkpoint at `path`, if there is one, of the run `wanted` describes:
+/// puts its state into `world` and `rig`, and returns the steps it had done and their wall
+/// time, s ((0, 0) without one).
+fn resume(
+    path: &std::path::Path,
+    wanted: &Header,
+    steps: u64,
+    world: &mut World<'_, Fx>,
+    rig: Option<&mut Rig>,
+) -> anyhow::Result<(u64, f64)> {
+    let Some((header, words)) = checkpoint::read(path)? else {
+        return Ok((0, 0.0));
+    };
+    let refuse = |why: String| {
+        anyhow::anyhow!(
+            "{}: cannot go on from this checkpoint: {why}; remove it or name another \
+             --checkpoint",
+            path.display()
+        )
+    };
+    header.matches(wanted).map_err(refuse)?;
+    if header.steps_done > steps {
+        return Err(refuse(format!(
+            "it is {} steps in, past the {steps} this run asks for",
+            header.steps_done
+        )));
+    }
+    checkpoint::restore(path, &words, world)?;
+    match (rig, &header.rig) {
+        (Some(r), Some(state)) => r.resume(state).map_err(refuse)?,
+        (None, None) => {}
+        _ => {
+            return Err(refuse(
+                "it was written with a harvester mounted or without".into(),
+            ))
+        }
+    }
+    if header.rig.is_some() && header.steps_done % CHUNK_STEPS != 0 && header.steps_done < steps {
+        eprintln!(
+            "field: note: {} is {} steps in, not a whole number of the machine's {CHUNK_STEPS}-step \
+             chunks: from here the run differs in its last bits from one never stopped",
+            path.display(),
+            header.steps_done
+        );
+    }
+    eprintln!(
+        "field: going on from {} at step {} of {steps} ({:.0} s of wall time so far)",
+        path.display(),
+        header.steps_done,
+        header.wall_seconds
+    );
+    Ok((header.steps_done, header.wall_seconds))
 }
 
 /// Lay out the field of `spec` from `seed`, mount `machine`, step, write `outputs` and return
@@ -325,9 +401,29 @@ fn run_one(
         Some(r) if args.pass => r.pass_steps(world.timestep_s()),
         _ => args.steps,
     };
+    let wanted = Header::new(inputs_hash(spec, machine, seed), seed, 0, 0.0, None);
+    let (mut done, wall_before) = match &outputs.checkpoint {
+        Some(path) => resume(path, &wanted, steps, &mut world, rig.as_mut())?,
+        None => (0, 0.0),
+    };
     let started = Instant::now();
+    let mut saved = Instant::now();
+    let every = std::time::Duration::from_secs(args.checkpoint_minutes * SECONDS_PER_MINUTE);
     let bar = super::steps_bar(label, steps);
-    let mut done = 0;
+    bar.set_position(done);
+    let save = |world: &mut World<'_, Fx>, rig: Option<&Rig>, done: u64| match &outputs.checkpoint {
+        Some(path) => {
+            let wall = wall_before + started.elapsed().as_secs_f64();
+            let header = Header {
+                steps_done: done,
+                wall_seconds: wall,
+                rig: rig.map(Rig::state),
+                ..wanted.clone()
+            };
+            checkpoint::write(path, header, world)
+        }
+        None => Ok(()),
+    };
     while done < steps {
         let n = PROGRESS_STEPS.min(steps - done);
         let stepped = match &mut rig {
@@ -343,9 +439,14 @@ fn run_one(
         })?;
         done += n;
         bar.set_position(done);
+        if saved.elapsed() >= every && done < steps {
+            save(&mut world, rig.as_ref(), done)?;
+            saved = Instant::now();
+        }
     }
     bar.finish_and_clear();
-    let wall_seconds = started.elapsed().as_secs_f64();
+    save(&mut world, rig.as_ref(), done)?;
+    let wall_seconds = wall_before + started.elapsed().as_secs_f64();
     let harvest = match (&rig, machine) {
         (Some(r), Some(m)) => {
             let pods = r.tally(&world);

@@ -25,7 +25,7 @@
 //! assert_eq!(t.loss_percent(), Some(50.0));
 //! ```
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::parts::Layout;
 
@@ -35,7 +35,7 @@ use super::parts::Layout;
 pub const DOWN_BELOW_SURFACE_M: f64 = 0.03;
 
 /// Where a lost pod was lost.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Where {
     /// Never lifted out of the soil.
@@ -53,7 +53,7 @@ pub enum Where {
 }
 
 /// What became of one pod.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum PodEnd {
     /// In the collector.

@@ -19,6 +19,7 @@
 use arachis_core::prelude::*;
 use arachis_core::scenario::materials::STEEL;
 use arachis_core::units::LENGTH_M_TO_MM;
+use serde::{Deserialize, Serialize};
 
 use super::loss::{at_end, check_detached, LossTally, PodEnd};
 use super::motion::{tracking_velocity_m_s, Travel};
@@ -41,6 +42,15 @@ struct Watched {
     plant: usize,
     lifted: bool,
     end: Option<PodEnd>,
+}
+
+/// A rig's own state between chunks ([`Rig::state`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RigState {
+    /// Whether each plant's root has been cut (the shovel's edge passed it).
+    pub roots_cut: Vec<bool>,
+    /// Each pod: whether it has been above the ground, and its end once known.
+    pub pods: Vec<(bool, Option<PodEnd>)>,
 }
 
 /// A harvester mounted in a field's world.
@@ -290,6 +300,37 @@ impl Rig {
             t.add(e);
         }
         t
+    }
+
+    /// What the rig keeps between chunks beyond the world: which roots are cut, and each
+    /// pod's progress. With the world's checkpoint it resumes a run
+    /// ([`crate::field::checkpoint`]).
+    pub fn state(&self) -> RigState {
+        RigState {
+            roots_cut: self.roots.iter().map(|r| r.2).collect(),
+            pods: self.pods.iter().map(|w| (w.lifted, w.end)).collect(),
+        }
+    }
+
+    /// Takes up `state` (of a rig mounted on the same field).
+    pub fn resume(&mut self, state: &RigState) -> Result<(), String> {
+        if state.roots_cut.len() != self.roots.len() || state.pods.len() != self.pods.len() {
+            return Err(format!(
+                "the checkpoint's machine followed {} roots and {} pods, this one {} and {}",
+                state.roots_cut.len(),
+                state.pods.len(),
+                self.roots.len(),
+                self.pods.len()
+            ));
+        }
+        for (r, &cut) in self.roots.iter_mut().zip(&state.roots_cut) {
+            r.2 = cut;
+        }
+        for (w, &(lifted, end)) in self.pods.iter_mut().zip(&state.pods) {
+            w.lifted = lifted;
+            w.end = end;
+        }
+        Ok(())
     }
 
     /// Roots let go so far.
