@@ -61,6 +61,7 @@ fn three_replicates_report_their_losses_and_the_t_test_against_table_12() {
     let output = dir.path().join("trial.json");
     let section = dir.path().join("section.svg");
     let pod_map = dir.path().join("pods.svg");
+    let report_dir = dir.path().join("report");
     let out = arachis(&[
         "--threads",
         "2",
@@ -78,6 +79,8 @@ fn three_replicates_report_their_losses_and_the_t_test_against_table_12() {
         pod_map.to_str().unwrap(),
         "--output",
         output.to_str().unwrap(),
+        "--report",
+        report_dir.to_str().unwrap(),
     ]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");
@@ -148,6 +151,40 @@ fn three_replicates_report_their_losses_and_the_t_test_against_table_12() {
         );
     }
     assert!(!section.exists(), "no un-numbered picture with replicates");
+
+    // The report: the JSON as printed, Table 12's rows from it, the verdict, the figures.
+    assert_eq!(
+        std::fs::read_to_string(report_dir.join("trial.json")).unwrap(),
+        stdout
+    );
+    let md = std::fs::read_to_string(report_dir.join("report.md")).unwrap();
+    for (i, (sim, field)) in losses.iter().zip(TABLE_12_FIELD_PCT).enumerate() {
+        let row = format!("| {} | {sim:.2} | {field:.2} |", i + 1);
+        assert!(md.contains(&row), "no row {row} in\n{md}");
+    }
+    let verdict = if p < 0.05 {
+        "**The test rejects**"
+    } else {
+        "does not reject"
+    };
+    assert!(md.contains(verdict), "{md}");
+    assert!(md.contains("df = 5"), "{md}");
+    // 300 steps are not a pass, and the report says so before its tables.
+    assert!(
+        md.contains("**Not a field trial's result:** replicate(s) 1, 2, 3"),
+        "{md}"
+    );
+    let svg = std::fs::read_to_string(report_dir.join("where-lost.svg")).unwrap();
+    assert!(
+        svg.contains("lost in the soil") && svg.contains("rep 3"),
+        "{svg}"
+    );
+    for r in 1..=3 {
+        // Beside the --pod-map ones, the report keeps the maps it links to.
+        let name = format!("pods_rep{r}.svg");
+        assert!(md.contains(&name));
+        assert!(report_dir.join(&name).exists(), "{name}");
+    }
 }
 
 #[test]

@@ -19,7 +19,10 @@
 //! losses (`--field-loss`, default seed 001 Table 12; `p_value`) and `pods_per_plant`.
 //! Files named by `--vtk`, `--picture`, `--section` and `--pod-map` get `_rep<R>` before
 //! their extension. `--pod-map` draws where every pod ended, from above.
-//! `--output FILE` also writes the printed JSON to FILE, whole or not at all.
+//! `--output FILE` also writes the printed JSON to FILE, whole or not at all. `--report DIR`
+//! writes the trial's report there (`crate::harvester::report`: `report.md` with seed 001
+//! Table 12's comparison and where the pods went, `trial.json`, `where-lost.svg`, and each
+//! replicate's pod map).
 //!
 //! `--checkpoint FILE.ckpt` keeps the run's state in FILE (`crate::field::checkpoint`, every
 //! `--checkpoint-minutes` and at the end): the same command run again goes on from it, bit
@@ -44,6 +47,7 @@ use crate::field::FieldSpec;
 use crate::harvest::SEED001_FIELD_LOSS_PERCENT;
 use crate::harvester::loss::LossTally;
 use crate::harvester::picture::{write_pod_map, write_section_picture};
+use crate::harvester::report::{self, Replicate, Trial};
 use crate::harvester::rig::{Rig, CHUNK_STEPS};
 use crate::harvester::trial::{summarise, TrialSummary};
 use crate::harvester::HarvesterSpec;
@@ -98,6 +102,11 @@ pub struct Args {
     /// Also write the printed JSON to FILE (whole or not at all).
     #[arg(long, value_name = "FILE.json")]
     pub output: Option<PathBuf>,
+    /// With `--harvester`: write the trial's report into DIR (`arachis::harvester::report`):
+    /// `report.md` (seed 001 Table 12's comparison, where the pods went), `trial.json`,
+    /// `where-lost.svg` and each replicate's pod map.
+    #[arg(long, value_name = "DIR", requires = "harvester")]
+    pub report: Option<PathBuf>,
     /// Keep the run's state in FILE (`arachis::field::checkpoint`), written every
     /// `--checkpoint-minutes` and when the steps are done; a run whose FILE exists goes on
     /// from it, bit for bit. With `--replicates`, one file per replicate (`_rep<R>`), so a
@@ -193,8 +202,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(bad) = field_loss.iter().find(|v| !(0.0..=100.0).contains(*v)) {
         anyhow::bail!("--field-loss: {bad} is not a loss rate in % (0 to 100)");
     }
+    if let Some(dir) = &args.report {
+        // Now, not after hours of stepping: the runs write their pod maps there.
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("--report: cannot create {}", dir.display()))?;
+    }
     let json = match (&machine, args.replicates) {
-        (Some(m), n) if n > 1 => {
+        (Some(m), n) if n > 1 || args.report.is_some() => {
             let started = Instant::now();
             let mut lines = Vec::new();
             for r in 0..n {
@@ -248,14 +262,44 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                     summary.alpha
                 );
             }
-            serde_json::to_string(&TrialReport {
+            let rows = lines
+                .iter()
+                .map(|l| Replicate {
+                    seed: l.seed,
+                    plants: l.plants,
+                    tally: l.harvest.as_ref().map(|h| h.pods).unwrap_or_default(),
+                    simulated_s: l.simulated_s,
+                    pass_s: l.harvest.as_ref().map_or(0.0, |h| h.pass_s),
+                    wall_seconds: l.wall_seconds,
+                })
+                .collect();
+            let dt_s = lines.first().map_or(0.0, |l| l.dt_s);
+            let threads = crate::stepping::run_threads();
+            let json = serde_json::to_string(&TrialReport {
                 name: spec.field.name.clone(),
                 machine: m.harvester.name.clone(),
-                summary,
+                summary: summary.clone(),
                 replicates: lines,
                 wall_seconds: started.elapsed().as_secs_f64(),
-                threads: crate::stepping::run_threads(),
-            })?
+                threads,
+            })?;
+            if let Some(dir) = &args.report {
+                let trial = Trial {
+                    field: &spec.field.name,
+                    field_file: &args.file.display().to_string(),
+                    machine: &m.harvester.name,
+                    machine_file: &args
+                        .harvester
+                        .as_ref()
+                        .map_or(String::new(), |p| p.display().to_string()),
+                    dt_s,
+                    threads,
+                    summary: &summary,
+                    replicates: rows,
+                };
+                report::write(dir, &trial, &json)?;
+            }
+            json
         }
         _ => {
             let outputs = Outputs::of(&args, None);
@@ -276,6 +320,8 @@ struct Outputs {
     picture: Option<PathBuf>,
     section: Option<PathBuf>,
     pod_map: Option<PathBuf>,
+    /// The pod map the report links to (in its folder).
+    report_pods: Option<PathBuf>,
     checkpoint: Option<PathBuf>,
 }
 
@@ -303,6 +349,7 @@ impl Outputs {
             picture: name(&args.picture),
             section: name(&args.section),
             pod_map: name(&args.pod_map),
+            report_pods: name(&args.report.as_ref().map(|d| d.join("pods.svg"))),
             checkpoint: name(&args.checkpoint),
         }
     }
@@ -507,17 +554,22 @@ fn run_one(
         let title = format!("{}, seed {seed}", spec.field.name);
         write_section_picture(path, &world, &loaded.materials, r.steel, row_y, &title)?;
     }
-    if let (Some(path), Some(r)) = (&outputs.pod_map, &rig) {
+    if let Some(r) = &rig {
         let title = format!("{}, seed {seed}", spec.field.name);
         let ends = r.ends(&world);
-        write_pod_map(
-            path,
-            &world,
-            &ends,
-            field.bed_min_m,
-            field.bed_max_m,
-            &title,
-        )?;
+        for path in [&outputs.pod_map, &outputs.report_pods]
+            .into_iter()
+            .flatten()
+        {
+            write_pod_map(
+                path,
+                &world,
+                &ends,
+                field.bed_min_m,
+                field.bed_max_m,
+                &title,
+            )?;
+        }
     }
     if let Some(path) = &outputs.picture {
         let title = format!("{}, seed {seed}", spec.field.name);

@@ -27,6 +27,7 @@ pub mod loss;
 pub mod motion;
 pub mod parts;
 pub mod picture;
+pub mod report;
 pub mod rig;
 pub mod trial;
 
