@@ -126,12 +126,18 @@ pub fn write_frame(path: &Path, frame: &ParticleFrame) -> anyhow::Result<()> {
 pub fn write_series(dir: &Path, frames: &[ParticleFrame]) -> anyhow::Result<PathBuf> {
     std::fs::create_dir_all(dir)
         .with_context(|| format!("cannot create VTK directory {}", dir.display()))?;
-    let mut names = Vec::with_capacity(frames.len());
+    let mut entries = Vec::with_capacity(frames.len());
     for (i, frame) in frames.iter().enumerate() {
         let name = format!("frame_{i:06}.vtk");
         write_frame(&dir.join(&name), frame)?;
-        names.push(name);
+        entries.push((frame.time_s, name));
     }
+    write_collection(dir, &entries)
+}
+
+/// Writes `dir/particles.pvd`, the ParaView collection of the frame files `entries`
+/// (simulated time, s, and file name in `dir`), in their order. Returns its path.
+pub fn write_collection(dir: &Path, entries: &[(f64, String)]) -> anyhow::Result<PathBuf> {
     let pvd = dir.join("particles.pvd");
     write_atomic(&pvd, |w| {
         writeln!(w, "<?xml version=\"1.0\"?>")?;
@@ -139,11 +145,10 @@ pub fn write_series(dir: &Path, frames: &[ParticleFrame]) -> anyhow::Result<Path
             w,
             "<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>"
         )?;
-        for (frame, name) in frames.iter().zip(&names) {
+        for (time_s, name) in entries {
             writeln!(
                 w,
-                "<DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{name}\"/>",
-                frame.time_s
+                "<DataSet timestep=\"{time_s}\" group=\"\" part=\"0\" file=\"{name}\"/>"
             )?;
         }
         writeln!(w, "</Collection>\n</VTKFile>")?;

@@ -6,6 +6,8 @@
 //! - A trial's replicates each keep their own file and resume.
 //! - A checkpoint of another seed, or a damaged one, is refused with its path; nothing is
 //!   written.
+//! - VTK frames taken as the run goes (`--frames`) change nothing in it, and a resumed run
+//!   adds to them.
 
 use std::path::Path;
 
@@ -166,4 +168,48 @@ fn a_checkpoint_of_another_seed_or_a_damaged_one_is_refused() {
     flipped[last] ^= 1;
     std::fs::write(&ckpt, &flipped).unwrap();
     refused(&["--steps", "500"], "checksum");
+}
+
+#[test]
+fn frames_taken_as_a_run_goes_change_nothing_and_go_on_after_a_resume() {
+    let dir = tempfile::tempdir().unwrap();
+    let files = small_files(dir.path());
+    let (plain, _) = field("2", &files, &["--steps", "1000"]);
+    let frames = dir.path().join("frames");
+    let ckpt = dir.path().join("pass.ckpt");
+    let with = |steps: &str| {
+        let args = [
+            "--steps",
+            steps,
+            "--frames",
+            frames.to_str().unwrap(),
+            "--frame-every",
+            "250",
+            "--checkpoint",
+            ckpt.to_str().unwrap(),
+        ];
+        field("2", &files, &args).0
+    };
+    with("500");
+    let framed = with("1000");
+    assert_eq!(framed["digest"], plain["digest"], "frames changed the run");
+    let pvd = std::fs::read_to_string(frames.join("particles.pvd")).unwrap();
+    for step in [0, 250, 500, 750, 1000] {
+        let name = format!("frame_{step:09}.vtk");
+        assert!(frames.join(&name).exists(), "{name}");
+        assert!(pvd.contains(&name), "{pvd}");
+    }
+    assert_eq!(pvd.matches("<DataSet").count(), 5, "{pvd}");
+    let out = arachis(&[
+        "field",
+        &files.0,
+        "--harvester",
+        &files.1,
+        "--frames",
+        "f",
+        "--frame-every",
+        "100",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("multiple of 250"));
 }

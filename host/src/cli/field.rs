@@ -24,6 +24,9 @@
 //! Table 12's comparison and where the pods went, `trial.json`, `where-lost.svg`, and each
 //! replicate's pod map).
 //!
+//! `--frames DIR` writes VTK frames as the run goes (every `--frame-every` steps, and a
+//! ParaView collection `particles.pvd`).
+//!
 //! `--checkpoint FILE.ckpt` keeps the run's state in FILE (`crate::field::checkpoint`, every
 //! `--checkpoint-minutes` and at the end): the same command run again goes on from it, bit
 //! for bit, so a pass of hours can stop and resume; a replicate already done is not run
@@ -52,7 +55,7 @@ use crate::harvester::rig::{Rig, CHUNK_STEPS};
 use crate::harvester::trial::{summarise, TrialSummary};
 use crate::harvester::HarvesterSpec;
 use crate::io::write_string_atomic;
-use crate::vtk::{write_frame, ParticleFrame};
+use crate::vtk::{write_collection, write_frame, ParticleFrame};
 
 /// Arguments of `arachis field`.
 #[derive(Debug, clap::Args)]
@@ -68,6 +71,16 @@ pub struct Args {
     /// Write every sphere after the steps as legacy VTK (ParaView).
     #[arg(long, value_name = "FILE.vtk")]
     pub vtk: Option<PathBuf>,
+    /// Write VTK frames during the run into DIR (`frame_<step>.vtk`, every `--frame-every`
+    /// steps and the last, plus `particles.pvd` for ParaView); with `--replicates`, one DIR
+    /// per replicate (`_rep<R>`).
+    #[arg(long, value_name = "DIR")]
+    pub frames: Option<PathBuf>,
+    /// Steps between VTK frames: a multiple of the machine's 250-step chunk, so that the
+    /// frames change nothing in the run.
+    #[arg(long, default_value_t = DEFAULT_FRAME_EVERY, requires = "frames",
+        value_parser = frame_every)]
+    pub frame_every: u64,
     /// Write the plan view of the laid-out field (plants from above), SVG.
     #[arg(long, value_name = "FILE.svg")]
     pub picture: Option<PathBuf>,
@@ -121,6 +134,22 @@ pub struct Args {
 
 /// Most steps one call runs.
 const MAX_STEPS: u64 = 100_000_000;
+/// Steps between VTK frames by default: about 0.04 s of the field's time step, some 85
+/// frames a pass.
+const DEFAULT_FRAME_EVERY: u64 = 200 * CHUNK_STEPS;
+
+/// `--frame-every`: a positive multiple of [`CHUNK_STEPS`].
+fn frame_every(s: &str) -> Result<u64, String> {
+    let n: u64 = s.parse().map_err(|e| format!("{e}"))?;
+    if n == 0 || n % CHUNK_STEPS != 0 || n > MAX_STEPS {
+        return Err(format!(
+            "{n} is not a multiple of {CHUNK_STEPS} steps (the machine's chunk) from \
+             {CHUNK_STEPS} to {MAX_STEPS}"
+        ));
+    }
+    Ok(n)
+}
+
 /// Longest time between checkpoints, min (a day).
 const MAX_CHECKPOINT_MINUTES: u64 = 24 * 60;
 /// Seconds in a minute.
@@ -320,6 +349,8 @@ struct Outputs {
     picture: Option<PathBuf>,
     section: Option<PathBuf>,
     pod_map: Option<PathBuf>,
+    /// The folder of VTK frames.
+    frames: Option<PathBuf>,
     /// The pod map the report links to (in its folder).
     report_pods: Option<PathBuf>,
     checkpoint: Option<PathBuf>,
@@ -349,9 +380,54 @@ impl Outputs {
             picture: name(&args.picture),
             section: name(&args.section),
             pod_map: name(&args.pod_map),
+            frames: name(&args.frames),
             report_pods: name(&args.report.as_ref().map(|d| d.join("pods.svg"))),
             checkpoint: name(&args.checkpoint),
         }
+    }
+}
+
+/// VTK frames taken during a run, one file per frame, named by step (so that a resumed run
+/// adds to them).
+struct Frames<'a> {
+    dir: &'a std::path::Path,
+    every: u64,
+}
+
+impl Frames<'_> {
+    /// The file of the frame after `step` steps.
+    fn name(step: u64) -> String {
+        format!("frame_{step:09}.vtk")
+    }
+
+    /// Writes the frame of `world` after `step` steps.
+    fn take(&self, world: &World<'_, Fx>, step: u64) -> anyhow::Result<()> {
+        write_frame(
+            &self.dir.join(Self::name(step)),
+            &ParticleFrame::from_world(world),
+        )
+    }
+
+    /// Writes the ParaView collection of every frame in the folder, in step order, each at
+    /// its step's time (`dt_s` s a step).
+    fn collect(&self, dt_s: f64) -> anyhow::Result<()> {
+        let mut steps: Vec<u64> = std::fs::read_dir(self.dir)
+            .with_context(|| format!("cannot list {}", self.dir.display()))?
+            .filter_map(|e| {
+                let name = e.ok()?.file_name().into_string().ok()?;
+                name.strip_prefix("frame_")?
+                    .strip_suffix(".vtk")?
+                    .parse()
+                    .ok()
+            })
+            .collect();
+        steps.sort_unstable();
+        let entries: Vec<(f64, String)> = steps
+            .into_iter()
+            .map(|s| (s as f64 * dt_s, Self::name(s)))
+            .collect();
+        write_collection(self.dir, &entries)?;
+        Ok(())
     }
 }
 
@@ -458,6 +534,20 @@ fn run_one(
     let every = std::time::Duration::from_secs(args.checkpoint_minutes * SECONDS_PER_MINUTE);
     let bar = super::steps_bar(label, steps);
     bar.set_position(done);
+    let frames = match &outputs.frames {
+        Some(dir) => {
+            std::fs::create_dir_all(dir)
+                .with_context(|| format!("--frames: cannot create {}", dir.display()))?;
+            Some(Frames {
+                dir,
+                every: args.frame_every,
+            })
+        }
+        None => None,
+    };
+    if let Some(f) = &frames {
+        f.take(&world, done)?;
+    }
     let save = |world: &mut World<'_, Fx>, rig: Option<&Rig>, done: u64| match &outputs.checkpoint {
         Some(path) => {
             let wall = wall_before + started.elapsed().as_secs_f64();
@@ -472,7 +562,11 @@ fn run_one(
         None => Ok(()),
     };
     while done < steps {
-        let n = PROGRESS_STEPS.min(steps - done);
+        // Blocks end on frames; both are whole chunks, so the frames change nothing.
+        let to_frame = frames
+            .as_ref()
+            .map_or(u64::MAX, |f| f.every - done % f.every);
+        let n = PROGRESS_STEPS.min(steps - done).min(to_frame);
         let stepped = match &mut rig {
             Some(r) => r.advance(&mut world, n),
             None => crate::stepping::run(&mut world, n).map_err(|e| e.to_string()),
@@ -486,6 +580,11 @@ fn run_one(
         })?;
         done += n;
         bar.set_position(done);
+        if let Some(f) = &frames {
+            if done % f.every == 0 || done == steps {
+                f.take(&world, done)?;
+            }
+        }
         if saved.elapsed() >= every && done < steps {
             save(&mut world, rig.as_ref(), done)?;
             saved = Instant::now();
@@ -493,6 +592,9 @@ fn run_one(
     }
     bar.finish_and_clear();
     save(&mut world, rig.as_ref(), done)?;
+    if let Some(f) = &frames {
+        f.collect(world.timestep_s())?;
+    }
     let wall_seconds = wall_before + started.elapsed().as_secs_f64();
     let harvest = match (&rig, machine) {
         (Some(r), Some(m)) => {
