@@ -567,8 +567,9 @@ mod tests {
     /// on, N (zero without JKR), in absolute terms: what matters where JKR's repulsive force,
     /// large even at a vanishing overlap, nearly cancels the normal damping (Fn, and with it
     /// the Coulomb limit, is then a small difference of two large terms).
-    /// - JKR: x = √a off by [`JKR_G_UNITS`]·2^-32/g′(x) moves the repulsive force (∝ x⁶) six
-    ///   times and the adhesive (∝ x³) three times its relative error.
+    /// - JKR: x = √a off by [`JKR_G_UNITS`]·2^-32/g′(x), plus where the Newton loop stops
+    ///   (2^-[`crate::contact::fused::jkr::NEWTON_STOP_BITS`] of x), moves the repulsive force
+    ///   (∝ x⁶) six times and the adhesive (∝ x³) three times its relative error.
     /// - Damping: ∝ √(√(R*α)·m*), so the overlap's rounding moves it by a quarter of
     ///   [`OVERLAP_ROUNDING_MM`]/α of itself, and the coarse roots by 2^-27.
     fn jkr_normal_error(p: &FusedPair<f64>, c: &FusedContact<f64>, alpha: f64) -> f64 {
@@ -580,7 +581,9 @@ mod tests {
             .expect("f64 has no envelope");
         let x3 = adh / a;
         let slope = 4.0 * x3 - p.jkr_c * c.r_star;
-        let dx_x = JKR_G_UNITS * 2f64.powi(-32) / slope / libm::cbrt(x3);
+        // The root's conditioning, and where either Newton loop may stop.
+        let dx_x = JKR_G_UNITS * 2f64.powi(-32) / slope / libm::cbrt(x3)
+            + 2f64.powi(-crate::contact::fused::jkr::NEWTON_STOP_BITS);
         // The normal contact velocity, as the law forms it (levers Rᵢ − α/2, Rⱼ − α/2).
         let (n, r_j) = match c.geometry {
             Geometry::Spheres { d, r_j, .. } => (d.scale(1.0 / d.norm()), r_j),

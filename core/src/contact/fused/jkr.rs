@@ -42,7 +42,7 @@
 //! ```
 
 use super::{FORCE_BITS, PRODUCT_BITS};
-use crate::contact::cohesion_jkr::{cbrt, newton_from_right};
+use crate::contact::cohesion_jkr::{cbrt, MAX_NEWTON};
 use crate::num::Envelope;
 
 /// JKR's c = √(2πΓ/E*) below 2^JKR_C_BITS √mm for the fused law (Γ = 1 J/m² with
@@ -74,7 +74,7 @@ pub fn force<T: Envelope>(
 ) -> Option<(T, T, T)> {
     let cr = c * r_star;
     let rd = r_star * delta;
-    let x = newton_from_right(start(cr, rd, last_root), cr, rd);
+    let x = newton_to_precision(start(cr, rd, last_root), cr, rd);
     let x3 = x * x * x;
     // (4/3)E*·x³ first, then ·x³: on a small contact x⁶ alone would keep few bits of Q.32.
     let (k_x3, k_in) = kn.mul_within(x3, PRODUCT_BITS);
@@ -115,6 +115,37 @@ fn start<T: Envelope>(cr: T, rd: T, last: T) -> T {
         .mul_int(2)
         .max(rd.mul_int(2).sqrt().sqrt())
 }
+
+/// Newton's method on g from `x`, a point right of its root, as the checked term's loop
+/// ([`crate::contact::cohesion_jkr`]) runs it, but it also stops once the next step would move
+/// x by at most 2^-[`NEWTON_STOP_BITS`] of itself: g ≤ 2^-k·x·g′, tested before the division
+/// the step costs. Why: from the last step's root the first step already lands that close
+/// (Newton's error squares), and the term's loop spent one or two more 128-bit divisions
+/// finding that the root had not moved. Since g is convex the iterates stay right of the
+/// root, so the root lies within that fraction below the x returned; a₃ = x⁶ is then off by
+/// at most 6·2^-k of itself, the adhesive force (∝ x³) by 3·2^-k.
+#[inline(always)]
+fn newton_to_precision<T: Envelope>(mut x: T, cr: T, rd: T) -> T {
+    for _ in 0..MAX_NEWTON {
+        let x2 = x * x;
+        let g = x2 * x2 - cr * x - rd;
+        let gp = (x2 * x).mul_int(4) - cr;
+        // x·g′ < 2^5·2^17 inside the envelope (module docs).
+        if g <= T::ZERO || gp <= T::ZERO || g <= (x * gp).mul_pow2(-NEWTON_STOP_BITS) {
+            break;
+        }
+        let step = g / gp;
+        if step <= T::ZERO {
+            break;
+        }
+        x -= step;
+    }
+    x
+}
+
+/// The Newton loop stops once its step would be below 2^-NEWTON_STOP_BITS of x
+/// ([`newton_to_precision`]): the repulsive force is then within 6·2^-24 = 3.6e-7 of itself.
+pub const NEWTON_STOP_BITS: i32 = 24;
 
 /// Iterates below 2^LAST_ROOT_BITS √mm: a last root beyond (none is, module docs) is not
 /// used as a start.
@@ -265,7 +296,9 @@ mod tests {
                         let x3 = want.1 / adhesion.to_f64();
                         let x = libm::cbrt(x3);
                         let slope = 4.0 * x3 - c.to_f64() * rs.to_f64();
-                        let dx_x = G_UNITS * 2f64.powi(-32) / slope / x;
+                        // And where either Newton loop may stop ([`NEWTON_STOP_BITS`]).
+                        let dx_x =
+                            G_UNITS * 2f64.powi(-32) / slope / x + 2f64.powi(-NEWTON_STOP_BITS);
                         for got in [cold, warm[0], warm[1]] {
                             for (g, w, power) in
                                 [(got.0.to_f64(), want.0, 6.0), (got.1.to_f64(), want.1, 3.0)]
