@@ -97,6 +97,7 @@ pub mod num;
 pub mod owned;
 pub mod pair;
 pub mod scenario;
+pub mod state_words;
 pub mod step;
 pub mod timestep;
 pub mod units;

@@ -6,6 +6,7 @@
 
 pub mod arena;
 pub mod calibration;
+pub mod checkpoint;
 pub mod cli;
 pub mod cluster;
 pub mod count_limits;

@@ -1,5 +1,5 @@
 //! Issue 20: a field pass is hours of stepping, so `arachis field --checkpoint FILE` keeps
-//! its state and the same command run again goes on from it (`arachis::field::checkpoint`).
+//! its state and the same command run again goes on from it (`arachis::checkpoint`).
 //!
 //! - A run stopped after 1 000 steps and run on to 2 000 ends with the digest of a run of
 //!   2 000 steps never stopped, on another thread count, with the harvester mounted.
@@ -13,34 +13,15 @@ use std::path::Path;
 
 use serde_json::Value;
 
-use crate::cli_support::{arachis, REPO_ROOT};
+use crate::cli_support::{arachis, small_field_files};
 
 /// Steps of the reference run; the stopped run stops half-way (both whole numbers of the
 /// machine's 250-step chunks).
 const STEPS: u64 = 2_000;
 
-/// A one-row, 0.2 m field and the shipped machine narrowed to 0.24 m, in `dir`.
+/// The small field's files, as strings for the command line.
 fn small_files(dir: &Path) -> (String, String) {
-    let data = Path::new(REPO_ROOT).join("testdata/peanut-plant");
-    std::fs::copy(
-        data.join("variety-huayu.toml"),
-        dir.join("variety-huayu.toml"),
-    )
-    .unwrap();
-    let mut field = std::fs::read_to_string(data.join("field-huayu.toml")).unwrap();
-    for (from, to) in [
-        ("ridge_length_m = 1.0", "ridge_length_m = 0.2"),
-        ("rows = 2", "rows = 1"),
-        ("margin_m = 0.25", "margin_m = 0.05"),
-    ] {
-        assert!(field.contains(from), "{from}");
-        field = field.replacen(from, to, 1);
-    }
-    let machine = std::fs::read_to_string(data.join("harvester-digger.toml")).unwrap();
-    let machine = machine.replacen("width_m = 0.6", "width_m = 0.24", 1);
-    let (f, m) = (dir.join("field.toml"), dir.join("machine.toml"));
-    std::fs::write(&f, field).unwrap();
-    std::fs::write(&m, machine).unwrap();
+    let (f, m) = small_field_files(dir);
     (f.display().to_string(), m.display().to_string())
 }
 

@@ -8,56 +8,18 @@
 //! physics. The t-test is recomputed here from the printed losses with statrs' Student t,
 //! independently of `arachis::stats`.
 
-use std::path::{Path, PathBuf};
-
 use serde_json::Value;
 use statrs::distribution::{ContinuousCDF, StudentsT};
 
-use crate::cli_support::{arachis, REPO_ROOT};
+use crate::cli_support::{arachis, small_field_files};
 
 /// Seed 001 Table 12's field losses, %.
 const TABLE_12_FIELD_PCT: [f64; 4] = [4.01, 3.83, 4.04, 3.42];
 
-fn testdata(name: &str) -> PathBuf {
-    Path::new(REPO_ROOT)
-        .join("testdata/peanut-plant")
-        .join(name)
-}
-
-/// A one-row, 0.2 m field with a narrow bed and the shipped machine narrowed to 0.24 m, in
-/// `dir`; returns the paths of the field and machine files.
-fn small_trial_files(dir: &Path) -> (PathBuf, PathBuf) {
-    std::fs::copy(
-        testdata("variety-huayu.toml"),
-        dir.join("variety-huayu.toml"),
-    )
-    .unwrap();
-    let mut field = std::fs::read_to_string(testdata("field-huayu.toml")).unwrap();
-    for (from, to) in [
-        ("ridge_length_m = 1.0", "ridge_length_m = 0.2"),
-        ("rows = 2", "rows = 1"),
-        ("margin_m = 0.25", "margin_m = 0.05"),
-    ] {
-        assert!(field.contains(from), "{from}");
-        field = field.replacen(from, to, 1);
-    }
-    let machine = std::fs::read_to_string(testdata("harvester-digger.toml")).unwrap();
-    let width = machine
-        .lines()
-        .find(|l| l.starts_with("width_m"))
-        .expect("the machine has a width")
-        .to_owned();
-    let machine = machine.replacen(&width, "width_m = 0.24", 1);
-    let (f, m) = (dir.join("field.toml"), dir.join("machine.toml"));
-    std::fs::write(&f, field).unwrap();
-    std::fs::write(&m, machine).unwrap();
-    (f, m)
-}
-
 #[test]
 fn three_replicates_report_their_losses_and_the_t_test_against_table_12() {
     let dir = tempfile::tempdir().unwrap();
-    let (field, machine) = small_trial_files(dir.path());
+    let (field, machine) = small_field_files(dir.path());
     let output = dir.path().join("trial.json");
     let section = dir.path().join("section.svg");
     let pod_map = dir.path().join("pods.svg");
@@ -190,7 +152,7 @@ fn three_replicates_report_their_losses_and_the_t_test_against_table_12() {
 #[test]
 fn a_bad_field_loss_exits_2_and_writes_nothing() {
     let dir = tempfile::tempdir().unwrap();
-    let (field, machine) = small_trial_files(dir.path());
+    let (field, machine) = small_field_files(dir.path());
     let output = dir.path().join("trial.json");
     let out = arachis(&[
         "field",

@@ -48,7 +48,7 @@ const N_PER_MM_PER_J_M2: f64 = 1.0e-3;
 pub const REACH_MAX_R_STAR_MM: f64 = 1000.0;
 /// Newton iterations allowed (each loop stops earlier, on the first non-decreasing step;
 /// next to the double root at δ_min convergence halves the error per step).
-pub(crate) const MAX_NEWTON: usize = 48;
+const MAX_NEWTON: usize = 48;
 
 /// Full JKR cohesion. Off value: Γ = 0 (`on = false`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -111,12 +111,24 @@ impl<S: Scalar> CohesionJkr<S> {
 /// right of it: g is convex there, so the iterates fall monotonically onto the root; the loop
 /// stops on the first non-decreasing step (or after [`MAX_NEWTON`]).
 #[inline(always)]
-fn newton_from_right<S: Scalar>(mut x: S, cr: S, rd: S) -> S {
+fn newton_from_right<S: Scalar>(x: S, cr: S, rd: S) -> S {
+    newton_until(x, cr, rd, |_, _, _| false)
+}
+
+/// [`newton_from_right`]'s loop, which also stops before a step where `close(x, g, g′)`
+/// says the root is near enough (the fused law's [`crate::contact::fused::jkr`]).
+#[inline(always)]
+pub(crate) fn newton_until<S: Scalar>(
+    mut x: S,
+    cr: S,
+    rd: S,
+    close: impl Fn(S, S, S) -> bool,
+) -> S {
     for _ in 0..MAX_NEWTON {
         let x2 = x * x;
         let g = x2 * x2 - cr * x - rd;
         let gp = (x2 * x).mul_int(4) - cr;
-        if g <= S::ZERO || gp <= S::ZERO {
+        if g <= S::ZERO || gp <= S::ZERO || close(x, g, gp) {
             break;
         }
         let step = g / gp;

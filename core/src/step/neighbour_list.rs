@@ -41,8 +41,8 @@ use crate::contact::history::wall_key;
 use crate::contact::{EffectHistory, NeighbourEntry, WALL_PARTNER_FLAG};
 use crate::error::{CapacityKind, Other, SetupError, Stage, StepError};
 use crate::num::{Envelope, Scalar, Vec3};
+use crate::state_words::{flag, index, scalar, vec3, CheckpointError, StateWords};
 use crate::wall::Wall;
-use crate::world::checkpoint::{flag, index, scalar, vec3, CheckpointError, StateWords};
 
 /// Partner-key flag of an entry whose pair touched in the last step and keeps history.
 /// Sphere ids stay below 2^29 (the world refuses larger capacities) and wall keys use

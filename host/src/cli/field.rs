@@ -27,7 +27,7 @@
 //! `--frames DIR` writes VTK frames as the run goes (every `--frame-every` steps, and a
 //! ParaView collection `particles.pvd`).
 //!
-//! `--checkpoint FILE.ckpt` keeps the run's state in FILE (`crate::field::checkpoint`, every
+//! `--checkpoint FILE.ckpt` keeps the run's state in FILE (`crate::checkpoint`, every
 //! `--checkpoint-minutes` and at the end): the same command run again goes on from it, bit
 //! for bit, so a pass of hours can stop and resume; a replicate already done is not run
 //! again. A checkpoint of other inputs or another seed is refused, with its path.
@@ -41,8 +41,8 @@ use arachis_core::units::LENGTH_M_TO_MM;
 use serde::Serialize;
 
 use crate::arena::{OwnedBonds, OwnedStorage};
+use crate::checkpoint::{self, inputs_hash, Header};
 use crate::count_limits::{count, MAX_REPLICATES};
-use crate::field::checkpoint::{self, inputs_hash, Header};
 use crate::field::layout::holes;
 use crate::field::picture::write_field_picture;
 use crate::field::soil::fill_fraction;
@@ -120,7 +120,7 @@ pub struct Args {
     /// `where-lost.svg` and each replicate's pod map.
     #[arg(long, value_name = "DIR", requires = "harvester")]
     pub report: Option<PathBuf>,
-    /// Keep the run's state in FILE (`arachis::field::checkpoint`), written every
+    /// Keep the run's state in FILE (`arachis::checkpoint`), written every
     /// `--checkpoint-minutes` and when the steps are done; a run whose FILE exists goes on
     /// from it, bit for bit. With `--replicates`, one file per replicate (`_rep<R>`), so a
     /// trial stopped half-way resumes where each replicate was.

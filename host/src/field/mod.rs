@@ -21,7 +21,6 @@
 //! A bad file is refused before anything is grown, with its path, line and key
 //! ([`FieldErrors`], positioned as a study file's errors are).
 
-pub mod checkpoint;
 pub mod layout;
 pub mod picture;
 pub mod soil;

@@ -304,7 +304,7 @@ impl Rig {
 
     /// What the rig keeps between chunks beyond the world: which roots are cut, and each
     /// pod's progress. With the world's checkpoint it resumes a run
-    /// ([`crate::field::checkpoint`]).
+    /// ([`crate::checkpoint`]).
     pub fn state(&self) -> RigState {
         RigState {
             roots_cut: self.roots.iter().map(|r| r.2).collect(),

@@ -99,3 +99,35 @@ pub fn assert_simulate_refuses_measurement(experiment: &str, measurement: &str, 
         &vtk,
     );
 }
+
+/// A one-row, 0.2 m field with a narrow bed (one plant) and the shipped machine narrowed to
+/// 0.24 m, written into `dir` with the shipped variety; returns the field and machine files.
+/// Small enough for a test to step it thousands of times in seconds.
+pub fn small_field_files(dir: &std::path::Path) -> (std::path::PathBuf, std::path::PathBuf) {
+    let data = std::path::Path::new(REPO_ROOT).join("testdata/peanut-plant");
+    std::fs::copy(
+        data.join("variety-huayu.toml"),
+        dir.join("variety-huayu.toml"),
+    )
+    .unwrap();
+    let mut field = std::fs::read_to_string(data.join("field-huayu.toml")).unwrap();
+    for (from, to) in [
+        ("ridge_length_m = 1.0", "ridge_length_m = 0.2"),
+        ("rows = 2", "rows = 1"),
+        ("margin_m = 0.25", "margin_m = 0.05"),
+    ] {
+        assert!(field.contains(from), "{from}");
+        field = field.replacen(from, to, 1);
+    }
+    let machine = std::fs::read_to_string(data.join("harvester-digger.toml")).unwrap();
+    let width = machine
+        .lines()
+        .find(|l| l.starts_with("width_m"))
+        .expect("the machine has a width")
+        .to_owned();
+    let machine = machine.replacen(&width, "width_m = 0.24", 1);
+    let (f, m) = (dir.join("field.toml"), dir.join("machine.toml"));
+    std::fs::write(&f, field).unwrap();
+    std::fs::write(&m, machine).unwrap();
+    (f, m)
+}

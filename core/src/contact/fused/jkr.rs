@@ -42,7 +42,7 @@
 //! ```
 
 use super::{FORCE_BITS, PRODUCT_BITS};
-use crate::contact::cohesion_jkr::{cbrt, MAX_NEWTON};
+use crate::contact::cohesion_jkr::{cbrt, newton_until};
 use crate::num::Envelope;
 
 /// JKR's c = √(2πΓ/E*) below 2^JKR_C_BITS √mm for the fused law (Γ = 1 J/m² with
@@ -125,22 +125,11 @@ fn start<T: Envelope>(cr: T, rd: T, last: T) -> T {
 /// root, so the root lies within that fraction below the x returned; a₃ = x⁶ is then off by
 /// at most 6·2^-k of itself, the adhesive force (∝ x³) by 3·2^-k.
 #[inline(always)]
-fn newton_to_precision<T: Envelope>(mut x: T, cr: T, rd: T) -> T {
-    for _ in 0..MAX_NEWTON {
-        let x2 = x * x;
-        let g = x2 * x2 - cr * x - rd;
-        let gp = (x2 * x).mul_int(4) - cr;
-        // x·g′ < 2^5·2^17 inside the envelope (module docs).
-        if g <= T::ZERO || gp <= T::ZERO || g <= (x * gp).mul_pow2(-NEWTON_STOP_BITS) {
-            break;
-        }
-        let step = g / gp;
-        if step <= T::ZERO {
-            break;
-        }
-        x -= step;
-    }
-    x
+fn newton_to_precision<T: Envelope>(x: T, cr: T, rd: T) -> T {
+    // x·g′ < 2^5·2^17 inside the envelope (module docs).
+    newton_until(x, cr, rd, |x, g, gp| {
+        g <= (x * gp).mul_pow2(-NEWTON_STOP_BITS)
+    })
 }
 
 /// The Newton loop stops once its step would be below 2^-NEWTON_STOP_BITS of x

@@ -10,7 +10,7 @@
 //! and the reason. Files are written whole or not at all ([`crate::io::write_atomic`]).
 //!
 //! ```
-//! use arachis::field::checkpoint::{inputs_hash, read, write, Header};
+//! use arachis::checkpoint::{inputs_hash, read, write, Header};
 //! use arachis::field::FieldSpec;
 //! use arachis_core::prelude::*;
 //! use arachis_core::scenario::BenchBed;
@@ -37,7 +37,7 @@ use arachis_core::prelude::*;
 use arachis_core::world::checkpoint::{WordReader, WordWriter};
 use serde::{Deserialize, Serialize};
 
-use super::FieldSpec;
+use crate::field::FieldSpec;
 use crate::harvester::rig::RigState;
 use crate::harvester::HarvesterSpec;
 
