@@ -11,10 +11,12 @@
 //! them) and force sums; the walls' positions, velocities and last forces; the neighbour
 //! list as it stands (its contact history, and when it will next be rebuilt, so that even
 //! `f64` worlds resume exactly); and the bond table (live bonds, the break log and count,
-//! the pending formations). What set-up fixes (materials, pairs, effects, counts, the kind of
-//! each wall, which sphere belongs to which body) is not restored but *checked*: reading
-//! into a world set up differently fails with [`CheckpointError::Mismatch`], naming what
-//! differs. A value no world could hold (a sphere id past the spheres, a list offset past
+//! the pending formations). What set-up fixes is not restored. Its shape is *checked* (the
+//! counts of bodies, spheres, walls and materials, each sphere's body, material and radius,
+//! each wall's kind, the time step, the bond sets' tags and the capacities): reading into a
+//! world set up differently fails with [`CheckpointError::Mismatch`], naming what differs.
+//! The pair and effect parameters and the bond sets' strengths are not in the words: the
+//! caller answers for them (the host hashes its input files). A value no world could hold (a sphere id past the spheres, a list offset past
 //! its half) fails with [`CheckpointError::Corrupt`], so a damaged stream cannot make the
 //! step index out of bounds. On an error the world may be partly overwritten: set it up
 //! again before using it.
