@@ -38,7 +38,7 @@ use arachis_core::world::checkpoint::{WordReader, WordWriter};
 use serde::{Deserialize, Serialize};
 
 use crate::field::FieldSpec;
-use crate::harvester::rig::RigState;
+use crate::harvester::rig::{Rig, RigState, CHUNK_STEPS};
 use crate::harvester::HarvesterSpec;
 
 /// The header's `format`: the layout of this file (the core's word layout has its own
@@ -191,4 +191,58 @@ pub fn restore(path: &Path, words: &[u64], world: &mut World<'_, Fx>) -> anyhow:
     world
         .read_checkpoint(&mut WordReader::new(words.iter().copied()))
         .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
+}
+
+/// Goes on from the checkpoint at `path`, if there is one, of the run `wanted` describes:
+/// puts its state into `world` and `rig`, and returns the steps it had done and their wall
+/// time, s ((0, 0) without one).
+pub fn resume(
+    path: &Path,
+    wanted: &Header,
+    steps: u64,
+    world: &mut World<'_, Fx>,
+    rig: Option<&mut Rig>,
+) -> anyhow::Result<(u64, f64)> {
+    let Some((header, words)) = read(path)? else {
+        return Ok((0, 0.0));
+    };
+    let refuse = |why: String| {
+        anyhow::anyhow!(
+            "{}: cannot go on from this checkpoint: {why}; remove it or name another \
+             --checkpoint",
+            path.display()
+        )
+    };
+    header.matches(wanted).map_err(refuse)?;
+    if header.steps_done > steps {
+        return Err(refuse(format!(
+            "it is {} steps in, past the {steps} this run asks for",
+            header.steps_done
+        )));
+    }
+    restore(path, &words, world)?;
+    match (rig, &header.rig) {
+        (Some(r), Some(state)) => r.resume(state).map_err(refuse)?,
+        (None, None) => {}
+        _ => {
+            return Err(refuse(
+                "it was written with a harvester mounted or without".into(),
+            ))
+        }
+    }
+    if header.rig.is_some() && header.steps_done % CHUNK_STEPS != 0 && header.steps_done < steps {
+        eprintln!(
+            "field: note: {} is {} steps in, not a whole number of the machine's {CHUNK_STEPS}-step \
+             chunks: from here the run differs in its last bits from one never stopped",
+            path.display(),
+            header.steps_done
+        );
+    }
+    eprintln!(
+        "field: going on from {} at step {} of {steps} ({:.0} s of wall time so far)",
+        path.display(),
+        header.steps_done,
+        header.wall_seconds
+    );
+    Ok((header.steps_done, header.wall_seconds))
 }

@@ -157,6 +157,69 @@ pub fn write_collection(dir: &Path, entries: &[(f64, String)]) -> anyhow::Result
     Ok(pvd)
 }
 
+/// VTK frames written one file at a time as a run goes (`frame_<step>.vtk`, named by step so
+/// that a resumed run adds to the frames it took before), every `every` steps, with
+/// [`StepFrames::collect`] writing the ParaView collection of the folder at the end.
+#[derive(Debug, Clone, Copy)]
+pub struct StepFrames<'a> {
+    dir: &'a Path,
+    every: u64,
+}
+
+impl<'a> StepFrames<'a> {
+    /// Frames every `every` (≥ 1) steps into `dir`, which is created now, before the run.
+    pub fn new(dir: &'a Path, every: u64) -> anyhow::Result<Self> {
+        ensure!(every >= 1, "frames must be at least one step apart");
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("cannot create VTK directory {}", dir.display()))?;
+        Ok(StepFrames { dir, every })
+    }
+
+    /// The file of the frame after `step` steps.
+    fn name(step: u64) -> String {
+        format!("frame_{step:09}.vtk")
+    }
+
+    /// Whether a frame falls after `step` steps.
+    pub fn due(&self, step: u64) -> bool {
+        step % self.every == 0
+    }
+
+    /// Steps from `step` to the next frame (≥ 1).
+    pub fn steps_to_next(&self, step: u64) -> u64 {
+        self.every - step % self.every
+    }
+
+    /// Writes the frame of `world` after `step` steps.
+    pub fn take<S: Scalar>(&self, world: &World<'_, S>, step: u64) -> anyhow::Result<()> {
+        write_frame(
+            &self.dir.join(Self::name(step)),
+            &ParticleFrame::from_world(world),
+        )
+    }
+
+    /// Writes `particles.pvd`: every frame of the folder, in step order, each at its step's
+    /// time (`dt_s` s a step). Returns its path.
+    pub fn collect(&self, dt_s: f64) -> anyhow::Result<PathBuf> {
+        let mut steps: Vec<u64> = std::fs::read_dir(self.dir)
+            .with_context(|| format!("cannot list {}", self.dir.display()))?
+            .filter_map(|e| {
+                let name = e.ok()?.file_name().into_string().ok()?;
+                name.strip_prefix("frame_")?
+                    .strip_suffix(".vtk")?
+                    .parse()
+                    .ok()
+            })
+            .collect();
+        steps.sort_unstable();
+        let entries: Vec<(f64, String)> = steps
+            .into_iter()
+            .map(|s| (s as f64 * dt_s, Self::name(s)))
+            .collect();
+        write_collection(self.dir, &entries)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -171,6 +171,9 @@ fn wall<S: Scalar>(v: &mut impl StateWords, w: &mut Wall<S>) -> Result<(), Check
     vec3(v, &mut w.force)
 }
 
+/// Bound of an id that may take any `u32` value.
+const ANY_U32: u64 = u32::MAX as u64 + 1;
+
 /// The bond table: the sets are set-up (checked by tag), the rest changes as bonds break.
 fn bonds<S: Scalar>(
     v: &mut impl StateWords,
@@ -185,9 +188,9 @@ fn bonds<S: Scalar>(
     v.same(t.log.len() as u64, "the break-log capacity")?;
     let sets = t.sets.len() as u64;
     index(v, &mut t.n, t.bonds.len() as u64 + 1, "the bond count")?;
-    index(v, &mut t.next_id, u32::MAX as u64 + 1, "the next bond id")?;
+    index(v, &mut t.next_id, ANY_U32, "the next bond id")?;
     for b in t.bonds[..t.n as usize].iter_mut() {
-        index(v, &mut b.id, u32::MAX as u64 + 1, "a bond's id")?;
+        index(v, &mut b.id, ANY_U32, "a bond's id")?;
         index(v, &mut b.sphere_a, spheres as u64, "a bond's first sphere")?;
         index(v, &mut b.sphere_b, spheres as u64, "a bond's second sphere")?;
         let mut set = b.set as u32;
@@ -216,7 +219,7 @@ fn bonds<S: Scalar>(
     for r in t.log[..t.n_log as usize].iter_mut() {
         v.word(&mut r.step)?;
         scalar(v, &mut r.time_ms)?;
-        index(v, &mut r.bond_id, u32::MAX as u64 + 1, "a break's bond id")?;
+        index(v, &mut r.bond_id, ANY_U32, "a break's bond id")?;
         index(v, &mut r.sphere_a, spheres as u64, "a break's first sphere")?;
         index(
             v,

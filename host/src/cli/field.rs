@@ -55,7 +55,7 @@ use crate::harvester::rig::{Rig, CHUNK_STEPS};
 use crate::harvester::trial::{summarise, TrialSummary};
 use crate::harvester::HarvesterSpec;
 use crate::io::write_string_atomic;
-use crate::vtk::{write_collection, write_frame, ParticleFrame};
+use crate::vtk::{write_frame, ParticleFrame, StepFrames};
 
 /// Arguments of `arachis field`.
 #[derive(Debug, clap::Args)]
@@ -155,7 +155,7 @@ const MAX_CHECKPOINT_MINUTES: u64 = 24 * 60;
 /// Seconds in a minute.
 const SECONDS_PER_MINUTE: u64 = 60;
 /// Steps between updates of the progress bar (a whole number of harvester chunks).
-const PROGRESS_STEPS: u64 = 40 * crate::harvester::rig::CHUNK_STEPS;
+const PROGRESS_STEPS: u64 = 40 * CHUNK_STEPS;
 
 /// The printed line.
 #[derive(Debug, Serialize)]
@@ -387,104 +387,6 @@ impl Outputs {
     }
 }
 
-/// VTK frames taken during a run, one file per frame, named by step (so that a resumed run
-/// adds to them).
-struct Frames<'a> {
-    dir: &'a std::path::Path,
-    every: u64,
-}
-
-impl Frames<'_> {
-    /// The file of the frame after `step` steps.
-    fn name(step: u64) -> String {
-        format!("frame_{step:09}.vtk")
-    }
-
-    /// Writes the frame of `world` after `step` steps.
-    fn take(&self, world: &World<'_, Fx>, step: u64) -> anyhow::Result<()> {
-        write_frame(
-            &self.dir.join(Self::name(step)),
-            &ParticleFrame::from_world(world),
-        )
-    }
-
-    /// Writes the ParaView collection of every frame in the folder, in step order, each at
-    /// its step's time (`dt_s` s a step).
-    fn collect(&self, dt_s: f64) -> anyhow::Result<()> {
-        let mut steps: Vec<u64> = std::fs::read_dir(self.dir)
-            .with_context(|| format!("cannot list {}", self.dir.display()))?
-            .filter_map(|e| {
-                let name = e.ok()?.file_name().into_string().ok()?;
-                name.strip_prefix("frame_")?
-                    .strip_suffix(".vtk")?
-                    .parse()
-                    .ok()
-            })
-            .collect();
-        steps.sort_unstable();
-        let entries: Vec<(f64, String)> = steps
-            .into_iter()
-            .map(|s| (s as f64 * dt_s, Self::name(s)))
-            .collect();
-        write_collection(self.dir, &entries)?;
-        Ok(())
-    }
-}
-
-/// Goes on from the checkpoint at `path`, if there is one, of the run `wanted` describes:
-/// puts its state into `world` and `rig`, and returns the steps it had done and their wall
-/// time, s ((0, 0) without one).
-fn resume(
-    path: &std::path::Path,
-    wanted: &Header,
-    steps: u64,
-    world: &mut World<'_, Fx>,
-    rig: Option<&mut Rig>,
-) -> anyhow::Result<(u64, f64)> {
-    let Some((header, words)) = checkpoint::read(path)? else {
-        return Ok((0, 0.0));
-    };
-    let refuse = |why: String| {
-        anyhow::anyhow!(
-            "{}: cannot go on from this checkpoint: {why}; remove it or name another \
-             --checkpoint",
-            path.display()
-        )
-    };
-    header.matches(wanted).map_err(refuse)?;
-    if header.steps_done > steps {
-        return Err(refuse(format!(
-            "it is {} steps in, past the {steps} this run asks for",
-            header.steps_done
-        )));
-    }
-    checkpoint::restore(path, &words, world)?;
-    match (rig, &header.rig) {
-        (Some(r), Some(state)) => r.resume(state).map_err(refuse)?,
-        (None, None) => {}
-        _ => {
-            return Err(refuse(
-                "it was written with a harvester mounted or without".into(),
-            ))
-        }
-    }
-    if header.rig.is_some() && header.steps_done % CHUNK_STEPS != 0 && header.steps_done < steps {
-        eprintln!(
-            "field: note: {} is {} steps in, not a whole number of the machine's {CHUNK_STEPS}-step \
-             chunks: from here the run differs in its last bits from one never stopped",
-            path.display(),
-            header.steps_done
-        );
-    }
-    eprintln!(
-        "field: going on from {} at step {} of {steps} ({:.0} s of wall time so far)",
-        path.display(),
-        header.steps_done,
-        header.wall_seconds
-    );
-    Ok((header.steps_done, header.wall_seconds))
-}
-
 /// Lay out the field of `spec` from `seed`, mount `machine`, step, write `outputs` and return
 /// the line.
 fn run_one(
@@ -526,7 +428,7 @@ fn run_one(
     };
     let wanted = Header::new(inputs_hash(spec, machine, seed), seed, 0, 0.0, None);
     let (mut done, wall_before) = match &outputs.checkpoint {
-        Some(path) => resume(path, &wanted, steps, &mut world, rig.as_mut())?,
+        Some(path) => checkpoint::resume(path, &wanted, steps, &mut world, rig.as_mut())?,
         None => (0, 0.0),
     };
     let started = Instant::now();
@@ -534,17 +436,11 @@ fn run_one(
     let every = std::time::Duration::from_secs(args.checkpoint_minutes * SECONDS_PER_MINUTE);
     let bar = super::steps_bar(label, steps);
     bar.set_position(done);
-    let frames = match &outputs.frames {
-        Some(dir) => {
-            std::fs::create_dir_all(dir)
-                .with_context(|| format!("--frames: cannot create {}", dir.display()))?;
-            Some(Frames {
-                dir,
-                every: args.frame_every,
-            })
-        }
-        None => None,
-    };
+    let frames = outputs
+        .frames
+        .as_deref()
+        .map(|dir| StepFrames::new(dir, args.frame_every))
+        .transpose()?;
     if let Some(f) = &frames {
         f.take(&world, done)?;
     }
@@ -563,9 +459,7 @@ fn run_one(
     };
     while done < steps {
         // Blocks end on frames; both are whole chunks, so the frames change nothing.
-        let to_frame = frames
-            .as_ref()
-            .map_or(u64::MAX, |f| f.every - done % f.every);
+        let to_frame = frames.as_ref().map_or(u64::MAX, |f| f.steps_to_next(done));
         let n = PROGRESS_STEPS.min(steps - done).min(to_frame);
         let stepped = match &mut rig {
             Some(r) => r.advance(&mut world, n),
@@ -581,7 +475,7 @@ fn run_one(
         done += n;
         bar.set_position(done);
         if let Some(f) = &frames {
-            if done % f.every == 0 || done == steps {
+            if f.due(done) || done == steps {
                 f.take(&world, done)?;
             }
         }
@@ -656,13 +550,14 @@ fn run_one(
         let title = format!("{}, seed {seed}", spec.field.name);
         write_section_picture(path, &world, &loaded.materials, r.steel, row_y, &title)?;
     }
-    if let Some(r) = &rig {
+    let pod_maps: Vec<&PathBuf> = [&outputs.pod_map, &outputs.report_pods]
+        .into_iter()
+        .flatten()
+        .collect();
+    if let (Some(r), false) = (&rig, pod_maps.is_empty()) {
         let title = format!("{}, seed {seed}", spec.field.name);
         let ends = r.ends(&world);
-        for path in [&outputs.pod_map, &outputs.report_pods]
-            .into_iter()
-            .flatten()
-        {
+        for path in pod_maps {
             write_pod_map(
                 path,
                 &world,
