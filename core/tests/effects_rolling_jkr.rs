@@ -201,7 +201,7 @@ fn jkr_hanging_sphere_rests_at_the_jkr_overlap_and_pulls_off_at_1_5_pi_gamma_r()
     }
     let delta = lo * lo / r_star - (2.0 * PI * gam * lo / es).sqrt();
     // The normal-only pair takes the checked terms; with Mindlin and Coulomb on, the pair
-    // takes the fused law while the overlap is positive, and the terms across the neck.
+    // takes the fused law, across the neck too (fixed point).
     for (name, spec) in [
         ("checked terms", normal_only(0.3)),
         ("fused law", PairSpec::hertz_mindlin(0.3, 0.5, 0.0)),

@@ -240,24 +240,22 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         let j = key_of(entry.partner) as usize;
         let f = S::to_fast;
         let rs = f(si.radius) + f(sj.radius);
-        if !rs.within(REACH_SQUARE_BITS) {
-            // rs² could leave the range: the general path checks every operation.
+        // A JKR contact attached at its last step holds across its neck, out to the pair's
+        // reach beyond touching (the general path's test, [`sphere_touch`]); the fused law
+        // evaluates the neck in fixed point and leaves it to the general path in f64.
+        let attached = JKR && self.jkr_attached(e);
+        let reach = if attached { rs + f(pair.jkr.reach) } else { rs };
+        if !reach.within(REACH_SQUARE_BITS) {
+            // reach² could leave the range: the general path checks every operation.
             return Fast::General;
         }
         let d = sj.position.map(f) - si.position.map(f);
-        let apart = |part: &Self| {
-            if JKR {
-                part.apart_unless_neck(pair, e)
-            } else {
-                Fast::Apart
-            }
-        };
-        if !(d.x.abs() < rs && d.y.abs() < rs && d.z.abs() < rs) {
-            return apart(self);
+        if !(d.x.abs() < reach && d.y.abs() < reach && d.z.abs() < reach) {
+            return Fast::Apart;
         }
         let d2 = d.norm2();
-        if d2 >= rs * rs {
-            return apart(self);
+        if d2 >= reach * reach {
+            return Fast::Apart;
         }
         if !pair.fused.eligible {
             return Fast::General;
@@ -300,6 +298,10 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         let Some(load) = load else {
             return Fast::General;
         };
+        if JKR && attached && root == S::Fast::ZERO {
+            // The neck broke: no loads, and the scan clears the entry.
+            return Fast::Apart;
+        }
         let load = load_of(&load);
         owner.sub_force(load.force);
         owner.add_torque(-load.torque_i);
@@ -318,16 +320,11 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         Fast::Done
     }
 
-    /// A pair apart on the fast path's test: [`Fast::Apart`], unless it is a JKR pair whose
-    /// neck held last step. A neck may hold beyond touching (down to the JKR separation),
-    /// which only the general path evaluates.
+    /// Whether entry `e`'s JKR contact was attached at its last step (its neck may hold
+    /// beyond touching).
     #[inline(always)]
-    fn apart_unless_neck(&self, pair: &PairParams<S>, e: usize) -> Fast {
-        if pair.fused.jkr && self.effects.get(e).is_some_and(|f| f.jkr_attached) {
-            Fast::General
-        } else {
-            Fast::Apart
-        }
+    fn jkr_attached(&self, e: usize) -> bool {
+        self.effects.get(e).is_some_and(|f| f.jkr_attached)
     }
 
     /// The JKR root x = √a of entry `e` at its last step, where the fused law's Newton loop

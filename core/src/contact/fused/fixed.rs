@@ -19,6 +19,7 @@
 //! Every bound of the envelope is checked before the product it protects; the kernel returns
 //! `None` outside it, and the caller falls back to the checked terms.
 
+use super::jkr::Neck;
 use super::{FusedContact, FusedLoad, FusedPair, Geometry};
 use crate::num::fixed::{isqrt_round_u128, nearest_root};
 use crate::num::fixed_fast::rsqrt_q30;
@@ -248,6 +249,13 @@ pub fn evaluate(
 
 /// [`evaluate`] with JKR's root x = √a (√mm): in, the last step's (0: none); out, this
 /// step's; like `delta`, updated only on success ([`super::evaluate_fast_jkr`]).
+///
+/// A JKR pair with a last root (attached) is also evaluated apart (δ ≤ 0), across its neck,
+/// as the checked terms evaluate it: the JKR force alone (no contact radius, so no Hertz
+/// force, damping or tangential stiffness; the history is carried as on contact), its
+/// repulsive part loading the rolling friction. Past the JKR separation the contact breaks:
+/// zero loads, and the history and root come back zero ([`super::jkr::neck_force`]). The
+/// caller gives a neck only within the pair's reach (rs + [`crate::contact::CohesionJkr::reach`]).
 #[inline(always)]
 pub fn evaluate_jkr(
     c: &FusedContact<FxFast>,
@@ -255,6 +263,9 @@ pub fn evaluate_jkr(
     delta: &mut Vec3<FxFast>,
     jkr_root: &mut FxFast,
 ) -> Option<FusedLoad<FxFast>> {
+    // A JKR contact attached at its last step (it has a root) may hold beyond touching.
+    let attached = p.jkr && jkr_root.raw() > 0;
+    let mut neck = false;
     let (kn, kt) = (p.four_thirds_e_star.raw(), p.eight_g_star.raw());
     let (cn, ct) = (p.normal_damping.raw(), p.tangential_damping.raw());
     let ri = c.r_i.raw();
@@ -273,12 +284,16 @@ pub fn evaluate_jkr(
             let rs = ri + rj;
             let d2: u128 = d.iter().map(|&x| (x as i128 * x as i128) as u128).sum();
             let rs2 = rs as u128 * rs as u128;
-            // Touching, with an overlap of at most half the reach (centres not too close).
-            if !(d2 < rs2 && 4 * d2 >= rs2 && d2 != 0) {
+            // Touching, or held across a JKR neck, with an overlap of at most half the reach
+            // (centres not too close).
+            neck = d2 >= rs2 && attached;
+            if !((d2 < rs2 || neck) && 4 * d2 >= rs2 && d2 != 0) {
                 return None;
             }
             let (dist, n) = distance_and_normal(d, d2)?;
             let alpha = rs - dist;
+            // The exact root may put an attached pair's centres at rs (α = 0): a neck too.
+            neck |= attached && alpha <= 0;
             let half = alpha >> 1;
             (n, alpha, ri - half, rj - half)
         }
@@ -304,7 +319,7 @@ pub fn evaluate_jkr(
     let (m_star, dt, r_star) = (c.m_star.raw(), c.dt.raw(), c.r_star.raw());
     let offsets_in = c.offset_i.is_none_or(|o| magnitude(raw3(o)) < OFFSET_RAW)
         & c.offset_j.is_none_or(|o| magnitude(raw3(o)) < OFFSET_RAW);
-    let inputs_in = (alpha > 0)
+    let inputs_in = ((alpha > 0) | neck)
         & (li > 0)
         & (r_star > 0)
         & (r_star < REACH_RAW)
@@ -340,8 +355,13 @@ pub fn evaluate_jkr(
     let vn = dot_wide(vc, n30, UNIT);
     let vt: [i64; 3] = each3!(|k| vc[k] - mul_wide(n30[k], vn, UNIT));
 
-    // Contact radius a = √(R*α) and √(a·m*) (Q.32).
-    let a = sqrt_coarse(r_star as u128 * alpha as u128);
+    // Contact radius a = √(R*α) and √(a·m*) (Q.32); a neck has none, so no Hertz force,
+    // damping or tangential stiffness, as in the checked terms.
+    let a = if neck {
+        0
+    } else {
+        sqrt_coarse(r_star as u128 * alpha as u128)
+    };
     if a >= CONTACT_RADIUS_RAW {
         return None;
     }
@@ -350,7 +370,23 @@ pub fn evaluate_jkr(
     // Normal force: Hertz (4/3)E*·a·α minus damping, clipped at zero (eqs. (3), (4)).
     // JKR's repulsive force replaces Hertz's; its adhesion is subtracted from the force last
     // ([`super::jkr`], the generic law's order).
-    let (elastic, attraction, root) = if p.jkr {
+    let (elastic, attraction, root) = if neck {
+        let held = super::jkr::neck_force(
+            FxFast::from_raw(alpha),
+            c.r_star,
+            p.jkr_c,
+            p.four_thirds_e_star,
+            p.jkr_adhesion,
+            *jkr_root,
+        )?;
+        let Neck::Held(rep, adh, root) = held else {
+            // Beyond the JKR separation: the contact breaks, with no force and no history.
+            *delta = Vec3::ZERO;
+            *jkr_root = FxFast::from_raw(0);
+            return Some(FusedLoad::default());
+        };
+        (rep.raw(), adh.raw(), root)
+    } else if p.jkr {
         let (rep, adh, root) = super::jkr::force(
             FxFast::from_raw(alpha),
             c.r_star,
@@ -595,5 +631,124 @@ mod tests {
         let damping = (p.normal_damping * root_am * vn).abs();
         let damping_abs = damping * (0.25 * OVERLAP_ROUNDING_MM / alpha + 2f64.powi(-27));
         (6.0 * rep + 3.0 * adh) * dx_x + damping_abs
+    }
+
+    /// A pod–pod pair with JKR (Γ 2 J/m², seed 000's coefficients) held apart across its
+    /// neck, δ from 0.1 to 0.9 of the JKR separation δ_min (Johnson 1985 §5.5), on a tilted
+    /// axis with sliding and spinning spheres: the force on j is n̂ times the checked term's
+    /// JKR force, repulsive minus adhesive (within 2e-6 of their sum plus a few Q.32 units,
+    /// the root's budget); no tangential force, so no torque about the centres; the rolling
+    /// torque is μr times the repulsive force times the lever Rᵢ − δ/2; the history is carried
+    /// as on contact (projected, plus vt·dt, within a dozen units). Past δ_min the contact
+    /// breaks (no load, history and root zero); a pair with no last root is not attached and
+    /// is left to the terms.
+    #[test]
+    fn a_neck_carries_the_jkr_force_alone_and_breaks_past_the_separation() {
+        use crate::contact::CohesionJkr;
+        use crate::num::Fx;
+        use crate::pair::{PairParams, PairSpec};
+        let pod = crate::contact::fused::random_contacts::POD
+            .validate()
+            .unwrap();
+        let gamma = 2.0;
+        let mut pp =
+            PairParams::<f64>::new(&pod, &pod, &PairSpec::hertz_mindlin(0.335, 0.854, 0.346));
+        pp.jkr = CohesionJkr::new(gamma, pp.e_star_mpa);
+        pp.fuse();
+        let p = pp.fused.map(FxFast::from_f64);
+        let term = CohesionJkr::<Fx>::new(gamma, pp.e_star_mpa);
+        let (r, r_star, m_star, dt) = (4.0, 2.0, 0.08, 1e-3);
+        let g = gamma * 1e-3;
+        let d_min = -0.75
+            * libm::cbrt(core::f64::consts::PI.powi(2) * g * g * r_star / pp.e_star_mpa.powi(2));
+        let n = Vec3::new(0.6, 0.0, 0.8);
+        let (v, wi, wj) = (
+            Vec3::new(0.01, -0.02, 0.003),
+            Vec3::new(0.0, 0.05, -0.01),
+            Vec3::new(0.02, 0.0, 0.01),
+        );
+        let d0 = Vec3::new(1e-4, 2e-4, -0.75e-4);
+        let fx = FxFast::from_f64;
+        let at = |delta: f64, root: FxFast| {
+            let c = FusedContact {
+                geometry: Geometry::Spheres {
+                    d: n.scale(2.0 * r - delta).map(fx),
+                    d2: fx((2.0 * r - delta).powi(2)),
+                    r_j: fx(r),
+                },
+                r_i: fx(r),
+                r_star: fx(r_star),
+                m_star: fx(m_star),
+                v_centres: v.map(fx),
+                spin_i: wi.map(fx),
+                spin_j: wj.map(fx),
+                offset_i: None,
+                offset_j: None,
+                dt: fx(dt),
+            };
+            let (mut hist, mut root) = (d0.map(fx), root);
+            evaluate_jkr(&c, &p, &mut hist, &mut root).map(|l| (l, hist, root))
+        };
+        let unit = 2.33e-10;
+        for k in 1..=9 {
+            let delta = d_min * k as f64 / 10.0;
+            let Some(Neck::Held(_, _, last)) = super::super::jkr::neck_force(
+                fx(delta),
+                fx(r_star),
+                p.jkr_c,
+                p.four_thirds_e_star,
+                p.jkr_adhesion,
+                FxFast::ZERO,
+            ) else {
+                panic!("broken at {delta}");
+            };
+            let (load, hist, root) = at(delta, last).expect("a neck in the envelope");
+            assert!(root > FxFast::ZERO, "still attached at {delta}");
+            let (rep, adh) = term
+                .force(Fx::from_f64(delta), Fx::from_f64(r_star))
+                .expect("held");
+            let (rep, adh) = (rep.to_f64(), adh.to_f64());
+            let want = n.scale(rep - adh);
+            let tol = 2e-6 * (rep + adh) + 8.0 * unit;
+            let err = load.force.map(|x| x.to_f64()) - want;
+            assert!(
+                err.x.abs().max(err.y.abs()).max(err.z.abs()) <= tol,
+                "force at δ {delta}: {:?} vs {want:?}",
+                load.force
+            );
+            assert_eq!((load.torque_i, load.torque_j), (Vec3::ZERO, Vec3::ZERO));
+            let lever = r - delta / 2.0;
+            let roll = 0.346 * rep * lever;
+            assert!((load.roll_i.to_f64() - roll).abs() <= 2e-6 * roll + 8.0 * unit * lever);
+            assert_eq!(load.roll_i, load.roll_j);
+            let vc = v - (wi.scale(lever) + wj.scale(lever)).cross(n);
+            let vt = vc - n.scale(vc.dot(n));
+            let want_hist = d0 - n.scale(d0.dot(n)) + vt.scale(dt);
+            let e = hist.map(|x| x.to_f64()) - want_hist;
+            assert!(
+                e.x.abs().max(e.y.abs()).max(e.z.abs()) <= 12.0 * unit,
+                "history at δ {delta}"
+            );
+        }
+        let near = match super::super::jkr::neck_force(
+            fx(0.9 * d_min),
+            fx(r_star),
+            p.jkr_c,
+            p.four_thirds_e_star,
+            p.jkr_adhesion,
+            FxFast::ZERO,
+        ) {
+            Some(Neck::Held(_, _, x)) => x,
+            other => panic!("{other:?}"),
+        };
+        let (load, hist, root) = at(1.001 * d_min, near).expect("a broken neck is evaluated");
+        assert_eq!(
+            (load, hist, root),
+            (FusedLoad::default(), Vec3::ZERO, FxFast::ZERO)
+        );
+        assert!(
+            at(0.5 * d_min, FxFast::ZERO).is_none(),
+            "no last root: not attached"
+        );
     }
 }

@@ -1,6 +1,7 @@
-//! JKR cohesion inside the fused law: the normal force of a touching contact (overlap δ > 0)
-//! of a pair with JKR cohesion, split as the checked term [`crate::contact::CohesionJkr`]
-//! splits it (Johnson, *Contact Mechanics* (1985) §5.5):
+//! JKR cohesion inside the fused law: the normal force of a contact of a pair with JKR
+//! cohesion, touching (overlap δ > 0, [`force`]) or held across a neck (δ ≤ 0, [`neck_force`]),
+//! split as the checked term [`crate::contact::CohesionJkr`] splits it (Johnson, *Contact
+//! Mechanics* (1985) §5.5):
 //!
 //!   repulsive 4E*a³/(3R*), adhesive √(8πΓE*·a³),  a the root of δ = a²/R* − √(2πΓa/E*).
 //!
@@ -10,7 +11,8 @@
 //! where g′ = 0), which costs a cube root (a Newton loop of its own) and lies far from the
 //! root of a compressed contact; here the start is the contact's root at its last step (kept
 //! in its effect history: one or two Newton steps then converge), else one Newton step from
-//! Hertz's root (R*δ)^{1/4} ([`start`]). Every operation is the
+//! Hertz's root (R*δ)^{1/4} ([`start`]). The repulsive force is formed at the root as
+//! (4/3)E*·x²·(δ + c·x), without the term's division by R* ([`split`]). Every operation is the
 //! fast arithmetic ([`Envelope`]), whose roots are the coarse ones (2^-28): the force differs
 //! from the term's in the last bits, and the contact is the fused law's (module docs of
 //! [`super`]).
@@ -22,10 +24,11 @@
 //! a point below 2^4 taken as it is (the last root is used only below 2^4), or a Newton step
 //! from a point p below 2^4 taken only up to 2p; so the start and every iterate x < 2^5:
 //! x⁴ < 2^20, cR*·x < 2^14 and 4x³ < 2^17. At the root, a³ = x⁶ < 2^20.4 and the adhesive
-//! force is below 2^26.2 N. The products that can leave the range, (4/3)E*·x³, its product
-//! with x³ and the quotient by R*, are tested exactly ([`Envelope::mul_within`]; a division
-//! that overflows gives the poison, which no bound admits). A Newton quotient that overflows
-//! next to x_m is the poison too, which is negative and ends the loop.
+//! force is below 2^26.2 N. The products that can leave the range, (4/3)E*·x² (< 2^29), its
+//! product with δ + c·x (< 2^10) and the adhesive one, are tested exactly
+//! ([`Envelope::mul_within`]). A Newton quotient that overflows next to x_m is the poison,
+//! which is negative and ends the loop. A neck's overlap lies between δ_min and 0, far inside
+//! the bound on |δ|.
 //!
 //! ```
 //! use arachis_core::contact::fused::jkr::force;
@@ -75,13 +78,58 @@ pub fn force<T: Envelope>(
     let cr = c * r_star;
     let rd = r_star * delta;
     let x = newton_to_precision(start(cr, rd, last_root), cr, rd);
-    let x3 = x * x * x;
-    // (4/3)E*·x³ first, then ·x³: on a small contact x⁶ alone would keep few bits of Q.32.
-    let (k_x3, k_in) = kn.mul_within(x3, PRODUCT_BITS);
-    let (k_a3, k_a3_in) = k_x3.mul_within(x3, PRODUCT_BITS);
-    let (adh, adh_in) = adhesion.mul_within(x3, FORCE_BITS);
-    let rep = k_a3 / r_star;
-    if bounded::<T>() && !(k_in & k_a3_in & adh_in & rep.within(FORCE_BITS)) {
+    split(x, delta, c, kn, adhesion)
+}
+
+/// What [`neck_force`] finds across a neck.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Neck<T> {
+    /// The neck holds: (repulsive, adhesive) N and the root x = √a, √mm, as [`force`] gives
+    /// them.
+    Held(T, T, T),
+    /// The overlap is below the JKR separation δ_min = −3x_m⁴/R*: the contact has broken.
+    Broken,
+}
+
+/// The JKR force across a neck, an attached contact held at `delta` ≤ 0 mm (the other
+/// arguments as [`force`]'s; `last_root` > 0, the root of its last step): [`Neck::Held`]
+/// while g(x) = x⁴ − cR*·x − R*δ has a root, [`Neck::Broken`] beyond δ_min, where it has
+/// none. The test needs no cube root: started right of the largest root, Newton's iterates
+/// stay right of it, where g′ > 0 and a step is shorter than x; without a root they run
+/// past the fold x_m (g′ ≤ 0) or step further than x (next to the fold). The checked term
+/// ([`crate::contact::CohesionJkr::force`]) compares δ with its δ_min instead; the two can
+/// differ only within a few units of δ_min. `None` outside the envelope.
+#[inline(always)]
+pub fn neck_force<T: Envelope>(
+    delta: T,
+    r_star: T,
+    c: T,
+    kn: T,
+    adhesion: T,
+    last_root: T,
+) -> Option<Neck<T>> {
+    let cr = c * r_star;
+    let rd = r_star * delta;
+    let x = newton_to_precision(start(cr, rd, last_root), cr, rd);
+    let x2 = x * x;
+    let g = x2 * x2 - cr * x - rd;
+    let gp = (x2 * x).mul_int(4) - cr;
+    if gp <= T::ZERO || g > x * gp {
+        return Some(Neck::Broken);
+    }
+    let (rep, adh, x) = split(x, delta, c, kn, adhesion)?;
+    Some(Neck::Held(rep, adh, x))
+}
+
+/// The force split at the root x = √a: repulsive (4/3)E*·a³/R* = (4/3)E*·x²·(δ + c·x), since
+/// the root has a²/R* = δ + c·√a (g(x) = 0 over R*), which needs no division and carries x's
+/// relative error at most four times (x⁶/R* six times); adhesive √(8πΓE*)·x³.
+#[inline(always)]
+fn split<T: Envelope>(x: T, delta: T, c: T, kn: T, adhesion: T) -> Option<(T, T, T)> {
+    let (k_a, k_in) = kn.mul_within(x * x, PRODUCT_BITS);
+    let (rep, rep_in) = k_a.mul_within(delta + c * x, FORCE_BITS);
+    let (adh, adh_in) = adhesion.mul_within(x * x * x, FORCE_BITS);
+    if bounded::<T>() && !(k_in & rep_in & adh_in) {
         return None;
     }
     Some((rep, adh, x))
@@ -107,13 +155,17 @@ fn start<T: Envelope>(cr: T, rd: T, last: T) -> T {
             return x;
         }
     }
+    // 2x_m, right of every root (a cube root: only where the starts above do not apply).
+    let twice_fold = || cbrt(cr.mul_pow2(-2)).mul_int(2);
+    if rd <= T::ZERO {
+        // A neck without a usable last root: no Hertz root at δ ≤ 0.
+        return twice_fold();
+    }
     let h = rd.sqrt().sqrt();
     if let Some(x) = step_right(h, cr, rd) {
         return x;
     }
-    cbrt(cr.mul_pow2(-2))
-        .mul_int(2)
-        .max(rd.mul_int(2).sqrt().sqrt())
+    twice_fold().max(rd.mul_int(2).sqrt().sqrt())
 }
 
 /// Newton's method on g from `x`, a point right of its root, as the checked term's loop
@@ -318,5 +370,77 @@ mod tests {
             }
         }
         assert!(n > 1000, "only {n} contacts inside the envelope");
+    }
+
+    /// Across a neck, δ from 0 down to the JKR separation δ_min = −(3/4)(π²Γ²R*/E*²)^{1/3}
+    /// (Johnson 1985 §5.5), the neck's force against the checked term's at the same quantised
+    /// δ, started from the root of a step 0.1 % less stretched: within the root's
+    /// conditioning ([`G_UNITS`] over g′, which vanishes at the fold, so the check stops
+    /// 1 % short of it) and the Newton stop, six and three times over. At 1.0001·δ_min the
+    /// neck has broken, at 0.9999·δ_min it holds, as the term says.
+    #[test]
+    fn a_neck_holds_as_the_checked_term_and_breaks_at_the_jkr_separation() {
+        let mut n = 0;
+        for &gamma in &[0.1, 2.0] {
+            for &es in &[1.0, 10.0, 1000.0] {
+                let term = CohesionJkr::<Fx>::new(gamma, es);
+                let (c, kn, adhesion) = constants(gamma, es);
+                let g = gamma * 1e-3;
+                for &r in &[0.5, 4.0, 20.0] {
+                    let d_min = -0.75 * libm::cbrt(PI * PI * g * g * r / (es * es));
+                    let rs = Fx::from_f64(r);
+                    let neck = |d: f64, last: FxFast| {
+                        neck_force::<FxFast>(
+                            Fx::from_f64(d).into(),
+                            rs.into(),
+                            c.into(),
+                            kn.into(),
+                            adhesion.into(),
+                            last,
+                        )
+                        .expect("inside the envelope")
+                    };
+                    let root_at = |d: f64| match neck(d, FxFast::ZERO) {
+                        Neck::Held(_, _, x) => x,
+                        Neck::Broken => panic!("broken at {d} (δ_min {d_min})"),
+                    };
+                    for k in 0..=40 {
+                        let delta = 0.99 * d_min * k as f64 / 40.0;
+                        let last = root_at(delta * 0.999);
+                        let Neck::Held(rep, adh, _) = neck(delta, last) else {
+                            panic!("Γ {gamma} E* {es} R* {r}: broken at δ {delta}, δ_min {d_min}");
+                        };
+                        let (want_rep, want_adh) =
+                            term.force(Fx::from_f64(delta), rs).expect("the term holds");
+                        let x3 = want_adh.to_f64() / adhesion.to_f64();
+                        let slope = 4.0 * x3 - c.to_f64() * r;
+                        let dx_x = G_UNITS * 2f64.powi(-32) / slope / libm::cbrt(x3)
+                            + 2f64.powi(-NEWTON_STOP_BITS);
+                        let x6_unit = kn.to_f64() * 2f64.powi(-32) / r;
+                        for (name, got, want, power) in [
+                            ("repulsive", rep.to_f64(), want_rep.to_f64(), 6.0),
+                            ("adhesive", adh.to_f64(), want_adh.to_f64(), 3.0),
+                        ] {
+                            let tol = (RELATIVE + power * dx_x) * want + x6_unit + ABSOLUTE_N;
+                            assert!(
+                                (got - want).abs() <= tol,
+                                "{name}: Γ {gamma} E* {es} R* {r} δ {delta}: {got} vs term {want}"
+                            );
+                        }
+                        n += 1;
+                    }
+                    let near = root_at(0.99 * d_min);
+                    assert_eq!(
+                        neck(1.0001 * d_min, near),
+                        Neck::Broken,
+                        "Γ {gamma} E* {es} R* {r}"
+                    );
+                    assert!(term.force(Fx::from_f64(1.0001 * d_min), rs).is_none());
+                    assert!(matches!(neck(0.9999 * d_min, near), Neck::Held(..)));
+                    assert!(term.force(Fx::from_f64(0.9999 * d_min), rs).is_some());
+                }
+            }
+        }
+        assert!(n > 500, "only {n} necks");
     }
 }

@@ -4,7 +4,8 @@
 //! module, written for speed. Almost every contact of a pod bed takes this path; a pair with
 //! any optional effect but JKR cohesion, or a term switched off other than damping or
 //! rolling, takes the terms. A JKR pair ([`jkr`]: the soil of a field) takes it while its
-//! overlap is positive; its neck, held beyond touching, takes the terms.
+//! overlap is positive, and in fixed point also across its neck, held beyond touching
+//! ([`fixed::evaluate_jkr`]); the `f64` law leaves a neck to the terms.
 //!
 //! What makes it fast:
 //! - **Torques about sphere centres.** The contact point lies at c = rᵢ + n̂·Lᵢ = rⱼ − n̂·Lⱼ
