@@ -173,3 +173,60 @@ fn a_kinematic_body_let_go_falls_freely() {
         );
     }
 }
+
+/// With prescribed contacts off (`World::set_prescribed_contacts(false)`, a harvester's
+/// parts over a floor), two kinematic bodies pressed into each other, and a kinematic body
+/// pressed into the floor, get no contact and no force; a body that moves still pushes a
+/// kinematic one (its reaction is reported), and a kinematic body let go meets the floor at
+/// the next step (the list is rebuilt when a body changes kind).
+#[test]
+fn without_prescribed_contacts_only_bodies_that_move_meet_kinematic_ones() {
+    let mut o = Owned::<Fx>::new(4, 4);
+    let mut w = World::new(o.storage()).unwrap();
+    let pod = w.add_material(POD).unwrap();
+    // Hertz–Mindlin, so that each live contact keeps history and is counted.
+    w.set_pair(pod, pod, PairSpec::hertz_mindlin(E, 0.5, 0.0))
+        .unwrap();
+    add_floor(&mut w, pod);
+    w.set_prescribed_contacts(false);
+    // A kinematic sphere 0.01 mm into the floor, a kinematic one 0.01 mm into it from above,
+    // and apart from them a dynamic sphere 0.01 mm into a kinematic one.
+    let (r, dip) = (R_M, 1e-5);
+    let sphere = |w: &mut World<'_, Fx>, x: f64, z: f64| {
+        w.add_sphere(SphereSpec::at_rest(pod, r, [x, 0.0, z]))
+            .unwrap()
+    };
+    let low = sphere(&mut w, 0.0, r - dip);
+    let high = sphere(&mut w, 0.0, 3.0 * r - 2.0 * dip);
+    let base = sphere(&mut w, 0.05, 3.0 * r);
+    let mover = sphere(&mut w, 0.05, 5.0 * r - dip);
+    for id in [low, high, base] {
+        w.set_body_kinematic(id).unwrap();
+    }
+    w.set_timestep_s(1e-7).unwrap();
+    w.step().unwrap();
+    assert_eq!(
+        w.body(low).force.z.to_f64(),
+        0.0,
+        "kinematic pair or floor contact"
+    );
+    assert_eq!(w.body(high).force.z.to_f64(), 0.0, "kinematic pair contact");
+    assert_eq!(w.contact_count(), 1, "only the moving sphere's contact");
+    assert!(w.body(mover).force.z.to_f64() > 0.0);
+    assert!(
+        w.body(base).force.z.to_f64() < 0.0,
+        "the reaction of the moving sphere"
+    );
+    // Let the lower sphere go: the floor pushes it up, and the sphere above down on it.
+    w.set_body_dynamic(low).unwrap();
+    w.step().unwrap();
+    assert!(
+        w.body(low).force.z.to_f64() > 0.0,
+        "the floor meets a body let go"
+    );
+    assert!(
+        w.body(high).force.z.to_f64() > 0.0,
+        "the kinematic sphere on it"
+    );
+    assert_eq!(w.contact_count(), 3);
+}

@@ -128,6 +128,9 @@ pub struct NeighbourList<'a, S> {
     builds: u64,
     /// The skin is R_max / `skin_divisor` ([`SKIN_DIVISOR`] unless a test changes it).
     pub(crate) skin_divisor: i32,
+    /// Whether pairs of which neither side can respond are listed
+    /// ([`crate::world::World::set_prescribed_contacts`]).
+    pub(crate) prescribed_pairs: bool,
 }
 
 impl<'a, S: Scalar> NeighbourList<'a, S> {
@@ -171,6 +174,7 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
             skin: S::ZERO,
             builds: 0,
             skin_divisor: SKIN_DIVISOR,
+            prescribed_pairs: true,
         })
     }
 
@@ -403,6 +407,7 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
             fast_squares: (max_radius.mul_int(2) + skin)
                 .to_fast()
                 .within(FAST_SQUARE_REACH_BITS),
+            prescribed_pairs: self.prescribed_pairs,
             old: Live {
                 offsets: &old_offsets[..self.listed + 1],
                 entries: old_entries,
@@ -478,6 +483,16 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
     }
 }
 
+/// Whether sphere `s` belongs to a body that no force moves (a kinematic body, inverse mass
+/// zero). Where the world leaves out prescribed contacts
+/// ([`crate::world::World::set_prescribed_contacts`]), a pair of which neither side can
+/// respond, two such bodies or one and a wall (the parts of a machine touching each other or
+/// the floor), gets no entry: its contact would move nothing.
+#[inline(always)]
+fn cannot_respond<S: Scalar>(s: &Sphere<S>) -> bool {
+    s.inv_mass == S::ZERO
+}
+
 /// What every part of a rebuild reads.
 struct Scan<'s, S> {
     spheres: &'s [Sphere<S>],
@@ -490,6 +505,8 @@ struct Scan<'s, S> {
     /// Whether distances may be squared in the unchecked arithmetic
     /// ([`FAST_SQUARE_REACH_BITS`]).
     fast_squares: bool,
+    /// Whether pairs of which neither side can respond are listed ([`cannot_respond`]).
+    prescribed_pairs: bool,
     old: Live<'s, S>,
 }
 
@@ -515,6 +532,7 @@ impl<S: Scalar> RebuildPart<'_, S> {
         for (k, i) in self.owners.clone().enumerate() {
             let si = &spheres[i];
             let reach_i = si.radius + sc.skin;
+            let fixed_i = !sc.prescribed_pairs && cannot_respond(si);
             let [cx, cy, cz] = grid.coords(sc.cell_of[i]);
             // The 3×3×3 neighbourhood as nine rows along x: the three cells of a row are
             // consecutive, so their spheres are one run of `sorted`.
@@ -540,7 +558,7 @@ impl<S: Scalar> RebuildPart<'_, S> {
                     // The owner keeps only partners above it, and none of its own body (a
                     // clump's own spheres crowd its neighbourhood: skip them first).
                     let sj = &spheres[j as usize];
-                    if j as usize <= i || sj.body == si.body {
+                    if j as usize <= i || sj.body == si.body || (fixed_i && cannot_respond(sj)) {
                         continue;
                     }
                     let rs = reach_i + sj.radius;
@@ -569,7 +587,7 @@ impl<S: Scalar> RebuildPart<'_, S> {
                     }
                 }
             }
-            for (w, wall) in sc.walls.iter().enumerate() {
+            for (w, wall) in sc.walls.iter().enumerate().filter(|_| !fixed_i) {
                 let mut faces = wall.shape.faces_near(si.position, si.radius, sc.skin);
                 while faces != 0 {
                     let face = faces.trailing_zeros();

@@ -449,7 +449,8 @@ impl<S: Scalar> World<'_, S> {
     /// Its inverse mass and inverse inertia become zero, so the integrator's kick vanishes
     /// exactly, and gravity, which the integrator adds as an acceleration, is skipped too.
     /// Its force and torque still show what the rest of the world exerts on it (gravity
-    /// included), which is how a test reads the reaction of a clamp or the pull of a gripper.
+    /// included), which is how a test reads the reaction of a clamp or the pull of a gripper
+    /// (other kinematic bodies and walls only while [`World::set_prescribed_contacts`] is on).
     /// Keep its velocities with [`World::set_body_velocity`]. Irreversible.
     pub fn set_body_kinematic(&mut self, id: BodyId) -> Result<(), SetupError> {
         if id.0 >= self.n_bodies {
@@ -459,6 +460,8 @@ impl<S: Scalar> World<'_, S> {
         b.inv_mass = S::ZERO;
         b.inv_inertia = Vec3::ZERO;
         self.sync_spheres_of(id.0 as usize);
+        // Its pairs with other kinematic bodies and walls may leave the list.
+        self.list.invalidate();
         Ok(())
     }
 
@@ -482,7 +485,24 @@ impl<S: Scalar> World<'_, S> {
         b.inv_mass = inv_mass;
         b.inv_inertia = inv_inertia;
         self.sync_spheres_of(id.0 as usize);
+        // Its pairs with kinematic bodies and walls may enter the list.
+        self.list.invalidate();
         Ok(())
+    }
+
+    /// Whether contacts whose sides all move as prescribed are evaluated: between two
+    /// kinematic bodies, and between a kinematic body and a wall. On by default, so that a
+    /// clamp pressed on a fixed part reports the reaction. A machine of kinematic parts
+    /// running over a floor (a harvester) turns it off: those contacts move nothing, and
+    /// parts with long levers take the checked terms, which cost a field about an eighth of
+    /// its step (`core/API_NOTES.md`). Such pairs then get no neighbour-list entry, and a
+    /// kinematic body's force shows only what the bodies that move exert on it. A set-up
+    /// value, like the pairs: a checkpoint is read into a world set up the same way.
+    pub fn set_prescribed_contacts(&mut self, on: bool) {
+        if self.list.prescribed_pairs != on {
+            self.list.prescribed_pairs = on;
+            self.list.invalidate();
+        }
     }
 
     /// Refresh the motion snapshot of body `b`'s spheres ([`Sphere::sync_motion`]).
