@@ -254,7 +254,7 @@ pub fn evaluate(
 /// as the checked terms evaluate it: the JKR force alone (no contact radius, so no Hertz
 /// force, damping or tangential stiffness; the history is carried as on contact), its
 /// repulsive part loading the rolling friction. Past the JKR separation the contact breaks:
-/// zero loads, and the history and root come back zero ([`super::jkr::neck_force`]). The
+/// zero loads, and the history and root come back zero ([`super::jkr::attached_force`]). The
 /// caller gives a neck only within the pair's reach (rs + [`crate::contact::CohesionJkr::reach`]).
 #[inline(always)]
 pub fn evaluate_jkr(
@@ -370,8 +370,8 @@ pub fn evaluate_jkr(
     // Normal force: Hertz (4/3)E*·a·α minus damping, clipped at zero (eqs. (3), (4)).
     // JKR's repulsive force replaces Hertz's; its adhesion is subtracted from the force last
     // ([`super::jkr`], the generic law's order).
-    let (elastic, attraction, root) = if neck {
-        let held = super::jkr::neck_force(
+    let (elastic, attraction, root) = if p.jkr {
+        let held = super::jkr::attached_force(
             FxFast::from_raw(alpha),
             c.r_star,
             p.jkr_c,
@@ -380,21 +380,11 @@ pub fn evaluate_jkr(
             *jkr_root,
         )?;
         let Neck::Held(rep, adh, root) = held else {
-            // Beyond the JKR separation: the contact breaks, with no force and no history.
+            // A neck beyond the JKR separation: it breaks, with no force and no history.
             *delta = Vec3::ZERO;
             *jkr_root = FxFast::from_raw(0);
             return Some(FusedLoad::default());
         };
-        (rep.raw(), adh.raw(), root)
-    } else if p.jkr {
-        let (rep, adh, root) = super::jkr::force(
-            FxFast::from_raw(alpha),
-            c.r_star,
-            p.jkr_c,
-            p.four_thirds_e_star,
-            p.jkr_adhesion,
-            *jkr_root,
-        )?;
         (rep.raw(), adh.raw(), root)
     } else {
         (mul_wide(mul_wide(kn, a, STATE), alpha, STATE), 0, *jkr_root)
@@ -692,7 +682,7 @@ mod tests {
         let unit = 2.33e-10;
         for k in 1..=9 {
             let delta = d_min * k as f64 / 10.0;
-            let Some(Neck::Held(_, _, last)) = super::super::jkr::neck_force(
+            let Some(Neck::Held(_, _, last)) = super::super::jkr::attached_force(
                 fx(delta),
                 fx(r_star),
                 p.jkr_c,
@@ -730,7 +720,7 @@ mod tests {
                 "history at δ {delta}"
             );
         }
-        let near = match super::super::jkr::neck_force(
+        let near = match super::super::jkr::attached_force(
             fx(0.9 * d_min),
             fx(r_star),
             p.jkr_c,

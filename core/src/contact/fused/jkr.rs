@@ -1,5 +1,5 @@
 //! JKR cohesion inside the fused law: the normal force of a contact of a pair with JKR
-//! cohesion, touching (overlap δ > 0, [`force`]) or held across a neck (δ ≤ 0, [`neck_force`]),
+//! cohesion, touching (overlap δ > 0, [`force`]) or held across a neck (δ ≤ 0, [`attached_force`]),
 //! split as the checked term [`crate::contact::CohesionJkr`] splits it (Johnson, *Contact
 //! Mechanics* (1985) §5.5):
 //!
@@ -75,32 +75,33 @@ pub fn force<T: Envelope>(
     adhesion: T,
     last_root: T,
 ) -> Option<(T, T, T)> {
-    let cr = c * r_star;
-    let rd = r_star * delta;
-    let x = newton_to_precision(start(cr, rd, last_root), cr, rd);
-    split(x, delta, c, kn, adhesion)
+    match attached_force(delta, r_star, c, kn, adhesion, last_root)? {
+        Neck::Held(rep, adh, x) => Some((rep, adh, x)),
+        Neck::Broken => None,
+    }
 }
 
-/// What [`neck_force`] finds across a neck.
+/// What [`attached_force`] finds.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Neck<T> {
-    /// The neck holds: (repulsive, adhesive) N and the root x = √a, √mm, as [`force`] gives
-    /// them.
+    /// The contact holds: (repulsive, adhesive) N and the root x = √a, √mm, as [`force`]
+    /// gives them.
     Held(T, T, T),
     /// The overlap is below the JKR separation δ_min = −3x_m⁴/R*: the contact has broken.
     Broken,
 }
 
-/// The JKR force across a neck, an attached contact held at `delta` ≤ 0 mm (the other
-/// arguments as [`force`]'s; `last_root` > 0, the root of its last step): [`Neck::Held`]
-/// while g(x) = x⁴ − cR*·x − R*δ has a root, [`Neck::Broken`] beyond δ_min, where it has
-/// none. The test needs no cube root: started right of the largest root, Newton's iterates
-/// stay right of it, where g′ > 0 and a step is shorter than x; without a root they run
-/// past the fold x_m (g′ ≤ 0) or step further than x (next to the fold). The checked term
-/// ([`crate::contact::CohesionJkr::force`]) compares δ with its δ_min instead; the two can
-/// differ only within a few units of δ_min. `None` outside the envelope.
+/// The JKR force of an attached contact, touching (as [`force`], whose arguments it takes)
+/// or held across its neck at `delta` ≤ 0 mm (`last_root` > 0, the root of its last step):
+/// [`Neck::Held`] while g(x) = x⁴ − cR*·x − R*δ has a root (always, for δ > 0),
+/// [`Neck::Broken`] beyond δ_min, where it has none. The test needs no cube root: started
+/// right of the largest root, Newton's iterates stay right of it, where g′ > 0 and a step
+/// is shorter than x; without a root they run past the fold x_m (g′ ≤ 0) or step further
+/// than x (next to the fold). The checked term ([`crate::contact::CohesionJkr::force`])
+/// compares δ with its δ_min instead; the two can differ only within a few units of δ_min.
+/// `None` outside the envelope.
 #[inline(always)]
-pub fn neck_force<T: Envelope>(
+pub fn attached_force<T: Envelope>(
     delta: T,
     r_star: T,
     c: T,
@@ -111,11 +112,13 @@ pub fn neck_force<T: Envelope>(
     let cr = c * r_star;
     let rd = r_star * delta;
     let x = newton_to_precision(start(cr, rd, last_root), cr, rd);
-    let x2 = x * x;
-    let g = x2 * x2 - cr * x - rd;
-    let gp = (x2 * x).mul_int(4) - cr;
-    if gp <= T::ZERO || g > x * gp {
-        return Some(Neck::Broken);
+    if rd <= T::ZERO {
+        let x2 = x * x;
+        let g = x2 * x2 - cr * x - rd;
+        let gp = (x2 * x).mul_int(4) - cr;
+        if gp <= T::ZERO || g > x * gp {
+            return Some(Neck::Broken);
+        }
     }
     let (rep, adh, x) = split(x, delta, c, kn, adhesion)?;
     Some(Neck::Held(rep, adh, x))
@@ -390,7 +393,7 @@ mod tests {
                     let d_min = -0.75 * libm::cbrt(PI * PI * g * g * r / (es * es));
                     let rs = Fx::from_f64(r);
                     let neck = |d: f64, last: FxFast| {
-                        neck_force::<FxFast>(
+                        attached_force::<FxFast>(
                             Fx::from_f64(d).into(),
                             rs.into(),
                             c.into(),
