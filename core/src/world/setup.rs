@@ -494,10 +494,11 @@ impl<S: Scalar> World<'_, S> {
     /// kinematic bodies, and between a kinematic body and a wall. On by default, so that a
     /// clamp pressed on a fixed part reports the reaction. A machine of kinematic parts
     /// running over a floor (a harvester) turns it off: those contacts move nothing, and
-    /// parts with long levers take the checked terms, which cost a field about an eighth of
-    /// its step (`core/API_NOTES.md`). Such pairs then get no neighbour-list entry, and a
-    /// kinematic body's force shows only what the bodies that move exert on it. A set-up
-    /// value, like the pairs: a checkpoint is read into a world set up the same way.
+    /// parts with long levers take the checked terms, which cost a 0.3 m field about an
+    /// eighth of its step (`core/API_NOTES.md`). Such pairs then get no neighbour-list entry,
+    /// and a kinematic body's force shows only what the bodies that move exert on it. A
+    /// set-up value that a checkpoint does not record: read one into a world set up the same
+    /// way.
     pub fn set_prescribed_contacts(&mut self, on: bool) {
         if self.list.prescribed_pairs != on {
             self.list.prescribed_pairs = on;
