@@ -9,14 +9,20 @@
 //!    the new history below 2^3 mm;
 //! 3. for inputs that the f64 law also accepts, the two agree on the force to the error
 //!    budget of the kernel's own test (2e-6 of the force, plus what the Q.32 rounding of the
-//!    overlap moves it by, plus the history's rounding times the tangential stiffness).
+//!    overlap moves it by, plus the history's rounding times the tangential stiffness);
+//! 4. with JKR cohesion on the pair and a last root (an attached contact, which the kernel
+//!    also evaluates apart, across its neck; the overlap may be negative), properties 1 and 2
+//!    hold, and a neck that breaks comes back with no load, no history and no root.
 
 #![no_main]
 
 #[path = "common/mod.rs"]
 mod common;
 
-use arachis_core::contact::fused::{evaluate, evaluate_fast, FusedContact, Geometry};
+use arachis_core::contact::fused::{
+    evaluate, evaluate_fast_jkr, FusedContact, FusedLoad, Geometry,
+};
+use arachis_core::contact::CohesionJkr;
 use arachis_core::num::{FxFast, Scalar, Vec3};
 use arachis_core::pair::PairParams;
 use arbitrary::Arbitrary;
@@ -42,6 +48,8 @@ struct Input {
     offset_j: Option<Real3>,
     delta: Real3,
     dt: Real,
+    /// JKR work of adhesion, J/m² (absolute value), and the contact's last root √a, √mm.
+    jkr: Option<(Real, Real)>,
 }
 
 /// Absolute force tolerance, N: a dozen Q32.32 units.
@@ -58,7 +66,12 @@ fuzz_target!(|input: Input| {
     if spec.validate().is_err() {
         return;
     }
-    let pair = PairParams::<f64>::new(&a, &b, &spec).fused;
+    let mut params = PairParams::<f64>::new(&a, &b, &spec);
+    if let Some((gamma, _)) = input.jkr {
+        params.jkr = CohesionJkr::new(gamma.get(2.0).abs(), params.e_star_mpa);
+        params.fuse();
+    }
+    let pair = params.fused;
     if !pair.eligible {
         return;
     }
@@ -120,10 +133,17 @@ fuzz_target!(|input: Input| {
     let to = |x: f64| FxFast::from_f64(x);
     let fixed_pair = pair.map(to);
     let mut delta = delta0.map(to);
+    let last_root = input.jkr.map_or(0.0, |(_, x)| x.get(0.5).abs());
+    let mut root = to(last_root);
     // Property 1: no panic, whatever the inputs.
-    let Some(got) = evaluate_fast(&c.map(to), &fixed_pair, &mut delta) else {
+    let Some(got) = evaluate_fast_jkr(&c.map(to), &fixed_pair, &mut delta, &mut root) else {
         return;
     };
+    // Property 4: a broken neck carries nothing.
+    if pair.jkr && root == FxFast::ZERO {
+        assert_eq!(got, FusedLoad::default(), "a broken neck with a load");
+        assert_eq!(delta, Vec3::ZERO, "a broken neck with history");
+    }
     // Property 2: inside the bounds.
     let f = got.force.map(|x| x.to_f64());
     let d = delta.map(|x| x.to_f64());
@@ -136,7 +156,11 @@ fuzz_target!(|input: Input| {
     for x in [d.x, d.y, d.z] {
         assert!(x.abs() < DELTA_LIMIT, "history {d:?} beyond the envelope");
     }
-    // Property 3: agreement with the f64 law where both accept the contact.
+    // Property 3: agreement with the f64 law where both accept the contact (the base law;
+    // the JKR root's own budget is the kernel's unit test's).
+    if pair.jkr {
+        return;
+    }
     let mut d_ref = delta0;
     let Some(want) = evaluate(&c, &pair, &mut d_ref) else {
         return;
