@@ -265,7 +265,6 @@ pub fn evaluate_jkr(
 ) -> Option<FusedLoad<FxFast>> {
     // A JKR contact attached at its last step (it has a root) may hold beyond touching.
     let attached = p.jkr && jkr_root.raw() > 0;
-    let mut neck = false;
     let (kn, kt) = (p.four_thirds_e_star.raw(), p.eight_g_star.raw());
     let (cn, ct) = (p.normal_damping.raw(), p.tangential_damping.raw());
     let ri = c.r_i.raw();
@@ -286,14 +285,11 @@ pub fn evaluate_jkr(
             let rs2 = rs as u128 * rs as u128;
             // Touching, or held across a JKR neck, with an overlap of at most half the reach
             // (centres not too close).
-            neck = d2 >= rs2 && attached;
-            if !((d2 < rs2 || neck) && 4 * d2 >= rs2 && d2 != 0) {
+            if !((d2 < rs2 || attached) && 4 * d2 >= rs2 && d2 != 0) {
                 return None;
             }
             let (dist, n) = distance_and_normal(d, d2)?;
             let alpha = rs - dist;
-            // The exact root may put an attached pair's centres at rs (α = 0): a neck too.
-            neck |= attached && alpha <= 0;
             let half = alpha >> 1;
             (n, alpha, ri - half, rj - half)
         }
@@ -310,6 +306,8 @@ pub fn evaluate_jkr(
             )
         }
     };
+    // Apart or just touching (α ≤ 0; a wall contact always overlaps): held across a neck.
+    let neck = attached && alpha <= 0;
     let (v, wi, wj, d0) = (
         raw3(c.v_centres),
         raw3(c.spin_i),
@@ -634,17 +632,11 @@ mod tests {
     /// is left to the terms.
     #[test]
     fn a_neck_carries_the_jkr_force_alone_and_breaks_past_the_separation() {
+        use crate::contact::fused::random_contacts::{sticky, POD};
         use crate::contact::CohesionJkr;
         use crate::num::Fx;
-        use crate::pair::{PairParams, PairSpec};
-        let pod = crate::contact::fused::random_contacts::POD
-            .validate()
-            .unwrap();
         let gamma = 2.0;
-        let mut pp =
-            PairParams::<f64>::new(&pod, &pod, &PairSpec::hertz_mindlin(0.335, 0.854, 0.346));
-        pp.jkr = CohesionJkr::new(gamma, pp.e_star_mpa);
-        pp.fuse();
+        let pp = sticky(POD, POD, 0.335, 0.854, 0.346, gamma);
         let p = pp.fused.map(FxFast::from_f64);
         let term = CohesionJkr::<Fx>::new(gamma, pp.e_star_mpa);
         let (r, r_star, m_star, dt) = (4.0, 2.0, 0.08, 1e-3);

@@ -51,19 +51,29 @@ pub(crate) fn pair(a: MaterialSpec, b: MaterialSpec, e: f64, mu: f64, mu_r: f64)
 /// The pairs of [`test_pairs`] with JKR cohesion: pod–pod sticky as the field's soil (work
 /// of adhesion 2 J/m²), pod–steel 0.5 J/m², steel–steel 0.1 J/m².
 pub(crate) fn jkr_pairs() -> [(FusedPair<f64>, bool); 3] {
-    let sticky = |a: MaterialSpec, b: MaterialSpec, e, mu, mu_r, gamma| {
-        let (a, b) = (a.validate().unwrap(), b.validate().unwrap());
-        let mut p = PairParams::<f64>::new(&a, &b, &PairSpec::hertz_mindlin(e, mu, mu_r));
-        p.jkr = CohesionJkr::new(gamma, p.e_star_mpa);
-        p.fuse();
-        assert!(p.fused.eligible && p.fused.jkr);
-        p.fused
-    };
     [
-        (sticky(POD, POD, 0.335, 0.854, 0.346, 2.0), false),
-        (sticky(POD, STEEL, 0.339, 0.589, 0.159, 0.5), false),
-        (sticky(STEEL, STEEL, 0.5, 0.3, 0.0, 0.1), true),
+        (sticky(POD, POD, 0.335, 0.854, 0.346, 2.0).fused, false),
+        (sticky(POD, STEEL, 0.339, 0.589, 0.159, 0.5).fused, false),
+        (sticky(STEEL, STEEL, 0.5, 0.3, 0.0, 0.1).fused, true),
     ]
+}
+
+/// The pair of materials `a`, `b` with Hertz–Mindlin (e, μs, μr) and JKR cohesion of work of
+/// adhesion `gamma` (J/m²), fused (and checked eligible for the fused law with JKR).
+pub(crate) fn sticky(
+    a: MaterialSpec,
+    b: MaterialSpec,
+    e: f64,
+    mu: f64,
+    mu_r: f64,
+    gamma: f64,
+) -> PairParams<f64> {
+    let (a, b) = (a.validate().unwrap(), b.validate().unwrap());
+    let mut p = PairParams::<f64>::new(&a, &b, &PairSpec::hertz_mindlin(e, mu, mu_r));
+    p.jkr = CohesionJkr::new(gamma, p.e_star_mpa);
+    p.fuse();
+    assert!(p.fused.eligible && p.fused.jkr);
+    p
 }
 
 /// The pairs the kernels are tested on, and whether each is stiff (steel on steel, whose
