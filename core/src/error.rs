@@ -109,6 +109,13 @@ pub enum SetupError {
         /// Largest accepted dt, s.
         max_s: f64,
     },
+    /// A multi-rate stride outside 1..=max ([`crate::step::multirate`]).
+    BadSlowStride {
+        /// The stride asked for.
+        stride: u32,
+        /// The largest stride.
+        max: u32,
+    },
     /// A wall description that makes no sense (zero normal or axis, empty box, radius ≤ 0).
     BadWall {
         /// What is wrong.
@@ -177,6 +184,10 @@ impl fmt::Display for SetupError {
                 f,
                 "time step {dt_s:e} s exceeds the stable bound {max_s:e} s \
                  (a fraction of the Rayleigh time of the smallest sphere)"
+            ),
+            SetupError::BadSlowStride { stride, max } => write!(
+                f,
+                "slow stride {stride} is outside 1..={max} (steps per cycle of multi-rate stepping)"
             ),
             SetupError::BadWall { reason } => write!(f, "invalid wall: {reason}"),
             SetupError::IncompatibleEffects { a, b } => {

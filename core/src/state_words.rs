@@ -44,6 +44,15 @@ pub enum CheckpointError {
     Truncated,
     /// The sink refused a word (a full buffer or a failed write).
     Refused,
+    /// A world with slow bodies was asked for a checkpoint within a multi-rate cycle, whose
+    /// sums the words do not hold ([`crate::step::multirate`]); write one when the step count
+    /// is a multiple of the stride.
+    MidCycle {
+        /// Steps done.
+        steps: u64,
+        /// Steps per cycle.
+        stride: u32,
+    },
 }
 
 impl fmt::Display for CheckpointError {
@@ -66,6 +75,10 @@ impl fmt::Display for CheckpointError {
             }
             CheckpointError::Truncated => write!(f, "the checkpoint ends early"),
             CheckpointError::Refused => write!(f, "the checkpoint's words could not be written"),
+            CheckpointError::MidCycle { steps, stride } => write!(
+                f,
+                "no checkpoint within a multi-rate cycle: {steps} steps done, not a multiple of                  the slow stride {stride}"
+            ),
         }
     }
 }

@@ -24,6 +24,7 @@ mod hertz_impact;
 mod incline;
 mod kinematic_partner;
 mod light_body_gravity;
+mod multirate;
 mod near_centres;
 mod near_walls;
 mod oblique_impact;

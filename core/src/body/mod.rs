@@ -60,6 +60,9 @@ pub struct Body<S> {
     pub sphere_count: u32,
     /// `true` for a multi-sphere clump (orientation integrated, anisotropic inertia).
     pub is_clump: bool,
+    /// `true` for a slow body, which moves once a cycle by the long step
+    /// ([`crate::step::multirate`]).
+    pub slow: bool,
 }
 
 impl<S: Scalar> Default for Body<S> {
@@ -79,6 +82,7 @@ impl<S: Scalar> Default for Body<S> {
             first_sphere: 0,
             sphere_count: 0,
             is_clump: false,
+            slow: false,
         }
     }
 }

@@ -26,6 +26,9 @@ pub struct Sphere<S> {
     pub body: u32,
     /// Material id.
     pub material: u16,
+    /// Whether its body is slow ([`crate::step::multirate`]); in the padding after
+    /// `material`, so the record keeps its size.
+    pub slow: bool,
     /// Velocity of the sphere centre, mm/ms (= m/s): v + ω × arm of its body.
     pub velocity: Vec3<S>,
     /// Angular velocity of its body, rad/ms.

@@ -23,6 +23,7 @@ pub mod balance;
 pub mod bonds;
 pub mod broad_phase;
 pub mod integration;
+pub mod multirate;
 pub mod narrow_phase;
 pub mod neighbour_list;
 pub mod parts;

@@ -23,6 +23,7 @@
 //! parts gives the same bits. One validity check per contact (force, torques, history) turns
 //! any fixed-point overflow into [`StepError::Overflow`] naming both parties.
 
+use super::multirate::{slow_pair, times, Cycle};
 use super::neighbour_list::{is_wall, key_of, LIVE_FLAG};
 use super::parts::{widen, PairTable};
 use super::prefetch::{prefetch_record, worth_hinting};
@@ -37,6 +38,7 @@ use crate::wall::{Wall, MAX_WALLS};
 use core::ops::Range;
 
 /// What every part of the contact stage reads.
+#[derive(Clone, Copy)]
 pub(crate) struct Shared<'w, S: Scalar> {
     /// Bodies at the start of the step.
     pub bodies: &'w [Body<S>],
@@ -50,8 +52,47 @@ pub(crate) struct Shared<'w, S: Scalar> {
     pub bonded: BondedPairs<'w, S>,
     /// Entry offsets of the live neighbour list, per owner sphere.
     pub offsets: &'w [u32],
-    /// Time step, ms.
+    /// Time step, ms (the long step k·dt for the contacts between slow bodies).
     pub dt: S,
+    /// Where the step lies in its multi-rate cycle ([`crate::step::multirate`]).
+    pub cycle: Cycle<S>,
+    /// Whether this is what the contacts between two slow bodies read
+    /// ([`Shared::for_slow_pairs`]).
+    pub slow_pairs: bool,
+}
+
+impl<S: Scalar> Shared<'_, S> {
+    /// What the contacts between two slow bodies read: the long step for their springs.
+    fn for_slow_pairs(&self) -> Self {
+        Shared {
+            dt: self.cycle.long_dt,
+            slow_pairs: true,
+            ..*self
+        }
+    }
+
+    /// A contact's loads as they count: k times for a contact between slow bodies, which is
+    /// evaluated once a cycle (its `dt` is the long step); `None` if that overflows.
+    #[inline(always)]
+    fn counted(&self, load: Load<S>) -> Option<Load<S>> {
+        if !self.slow_pairs {
+            return Some(load);
+        }
+        let k = self.cycle.stride;
+        let counted = Load {
+            force: times(load.force, k),
+            torque_i: times(load.torque_i, k),
+            torque_j: times(load.torque_j, k),
+            roll_i: load.roll_i.mul_int(k as i32),
+            roll_j: load.roll_j.mul_int(k as i32),
+        };
+        let valid = counted.force.is_valid()
+            & counted.torque_i.is_valid()
+            & counted.torque_j.is_valid()
+            & counted.roll_i.is_valid()
+            & counted.roll_j.is_valid();
+        valid.then_some(counted)
+    }
 }
 
 /// One part of the contact stage (see the module docs).
@@ -90,6 +131,9 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         let base = sh.offsets[self.spheres.start] as usize;
         let with_effects = !self.effects.is_empty();
         let hint = worth_hinting(sh.spheres);
+        let multirate = sh.cycle.multirate();
+        let slow_sh = sh.for_slow_pairs();
+        let single_rate = sh;
         for i in self.spheres.clone() {
             let range = sh.offsets[i] as usize - base..sh.offsets[i + 1] as usize - base;
             if hint {
@@ -102,6 +146,14 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
             for e in range {
                 let entry = self.entries[e];
                 let key = key_of(entry.partner);
+                // Two slow bodies meet once a cycle, with the long step; their entry keeps
+                // its history in between (`crate::step::multirate`).
+                let slow =
+                    multirate && !is_wall(key) && slow_pair(si, &single_rate.spheres[key as usize]);
+                if slow && !single_rate.cycle.slow_contacts {
+                    continue;
+                }
+                let sh = if slow { &slow_sh } else { single_rate };
                 let fast = if is_wall(key) {
                     self.wall_fast(sh, si, key, e, &entry, &mut owner, with_effects)
                 } else {
@@ -141,7 +193,8 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
                                 touch.state.delta = delta.map(S::from_fast);
                                 touch.state.jkr_attached |= pair.fused.jkr;
                                 touch.state.jkr_root = S::from_fast(root);
-                                self.apply_touch(&touch, &load_of(&load));
+                                let load = sh.counted(load_of(&load)).ok_or(touch.overflow())?;
+                                self.apply_touch(&touch, &load);
                                 self.write(e, key, &touch.state, true);
                                 continue;
                             }
@@ -302,7 +355,10 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
             // The neck broke: no loads, and the scan clears the entry.
             return Fast::Apart;
         }
-        let load = load_of(&load);
+        let Some(load) = sh.counted(load_of(&load)) else {
+            // Counted k times it overflows: the general path reports it.
+            return Fast::General;
+        };
         owner.sub_force(load.force);
         owner.add_torque(-load.torque_i);
         owner.add_roll(load.roll_i);
@@ -462,7 +518,8 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         lane.kinematics(sh);
         lane.roots(sh);
         lane.law(sh);
-        let load = lane.load.ok_or(lane.t.overflow())?;
+        let load = lane.load.and_then(|l| sh.counted(l));
+        let load = load.ok_or(lane.t.overflow())?;
         self.apply_touch(&lane.t, &load);
         if pair.jkr.on && !lane.t.state.jkr_attached {
             // The JKR neck broke (beyond the separation): the law gave no force.

@@ -61,6 +61,14 @@ impl<S: Scalar> World<'_, S> {
         &mut self,
         out: &mut WordWriter<F>,
     ) -> Result<(), CheckpointError> {
+        let stride = self.slow_stride;
+        let slow = self.bodies[..self.n_bodies as usize].iter().any(|b| b.slow);
+        if slow && self.steps % u64::from(stride) != 0 {
+            return Err(CheckpointError::MidCycle {
+                steps: self.steps,
+                stride,
+            });
+        }
         self.exchange(out)
     }
 

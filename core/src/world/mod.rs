@@ -80,6 +80,10 @@ pub struct World<'a, S: Scalar> {
     pub(crate) steps: u64,
     pub(crate) max_radius: S,
     pub(crate) min_rayleigh_s: f64,
+    /// Steps per cycle of multi-rate stepping, k (1: single-rate; [`crate::step::multirate`]).
+    pub(crate) slow_stride: u32,
+    /// Smallest Rayleigh time over the spheres of slow bodies, s (∞ with none).
+    pub(crate) min_rayleigh_slow_s: f64,
     /// Bonded-particle model state ([`crate::bond`]).
     pub(crate) bond_table: Bonds<'a, S>,
     /// Optional air drag (off by default; [`crate::effects`]).
@@ -138,6 +142,8 @@ impl<'a, S: Scalar> World<'a, S> {
             steps: 0,
             max_radius: S::ZERO,
             min_rayleigh_s: f64::INFINITY,
+            slow_stride: 1,
+            min_rayleigh_slow_s: f64::INFINITY,
             bond_table: Bonds::empty(),
             air_drag: AirDrag::default(),
             balance: StepBalance::default(),
@@ -147,6 +153,17 @@ impl<'a, S: Scalar> World<'a, S> {
     /// Largest accepted time step, s (∞ while the world has no sphere).
     pub fn max_timestep_s(&self) -> f64 {
         max_stable_dt_s(self.min_rayleigh_s)
+    }
+
+    /// Largest accepted long step k·dt of slow bodies, s (∞ with none;
+    /// [`crate::step::multirate`]).
+    pub fn max_slow_timestep_s(&self) -> f64 {
+        max_stable_dt_s(self.min_rayleigh_slow_s)
+    }
+
+    /// Steps per cycle of multi-rate stepping (1: single-rate).
+    pub fn slow_stride(&self) -> u32 {
+        self.slow_stride
     }
 
     /// Smallest Rayleigh time over all spheres, s.

@@ -13,6 +13,7 @@ use crate::material::{finite, Material, MaterialId, MaterialSpec, PoissonRange, 
 use crate::num::quantise::quantise;
 use crate::num::{Quat, Scalar, Vec3};
 use crate::pair::{PairParams, PairSpec};
+use crate::step::multirate::MAX_SLOW_STRIDE;
 use crate::timestep::rayleigh_time_s;
 use crate::units::*;
 use crate::wall::{q3, WallId, WallSpec, MAX_WALLS};
@@ -158,12 +159,7 @@ impl<S: Scalar> World<'_, S> {
         if r > self.max_radius {
             self.max_radius = r;
         }
-        let t = rayleigh_time_s(
-            radius_m,
-            mat.density_g_mm3 / DENSITY_KG_M3_TO_G_MM3,
-            mat.youngs_modulus_mpa / STRESS_PA_TO_MPA,
-            mat.poisson,
-        );
+        let t = sphere_rayleigh_s(radius_m, mat);
         if t < self.min_rayleigh_s {
             self.min_rayleigh_s = t;
         }
@@ -506,6 +502,69 @@ impl<S: Scalar> World<'_, S> {
         }
     }
 
+    /// Multi-rate stepping ([`crate::step::multirate`]): slow bodies move once every
+    /// `stride` steps by the long step stride·dt. 1 (the default) is single-rate stepping.
+    /// Refused outside 1..=[`MAX_SLOW_STRIDE`], and when the long step would exceed the slow
+    /// spheres' stable bound ([`crate::timestep`]; checked again at every step, since the
+    /// time step may change). A set-up value that a checkpoint does not record.
+    pub fn set_slow_stride(&mut self, stride: u32) -> Result<(), SetupError> {
+        if !(1..=MAX_SLOW_STRIDE).contains(&stride) {
+            return Err(SetupError::BadSlowStride {
+                stride,
+                max: MAX_SLOW_STRIDE,
+            });
+        }
+        let old = self.slow_stride;
+        self.slow_stride = stride;
+        if let Err(e) = self.check_long_step() {
+            self.slow_stride = old;
+            return Err(e);
+        }
+        Ok(())
+    }
+
+    /// Mark body `id` slow (`true`) or not: a slow body moves once a cycle by the long step,
+    /// and its contacts with other slow bodies are evaluated once a cycle
+    /// ([`crate::step::multirate`]). Without a stride above 1 the mark changes nothing. A
+    /// set-up value that a checkpoint does not record.
+    pub fn set_body_slow(&mut self, id: BodyId, slow: bool) -> Result<(), SetupError> {
+        if id.0 >= self.n_bodies {
+            return Err(SetupError::UnknownId { id: id.0 });
+        }
+        let b = &self.bodies[id.0 as usize];
+        let spheres = b.first_sphere as usize..(b.first_sphere + b.sphere_count) as usize;
+        let mut rayleigh = self.min_rayleigh_slow_s;
+        if slow {
+            for s in &self.spheres[spheres.clone()] {
+                let mat = &self.materials[s.material as usize];
+                rayleigh = rayleigh.min(sphere_rayleigh_s(s.radius_m(), mat));
+            }
+        }
+        let old = core::mem::replace(&mut self.min_rayleigh_slow_s, rayleigh);
+        if let Err(e) = self.check_long_step() {
+            self.min_rayleigh_slow_s = old;
+            return Err(e);
+        }
+        self.bodies[id.0 as usize].slow = slow;
+        for s in &mut self.spheres[spheres] {
+            s.slow = slow;
+        }
+        Ok(())
+    }
+
+    /// The long step stride·dt against the slow spheres' stable bound.
+    fn check_long_step(&self) -> Result<(), SetupError> {
+        let long_s = self.dt_s * f64::from(self.slow_stride);
+        let max_s = self.max_slow_timestep_s();
+        if self.slow_stride > 1 && long_s > max_s {
+            return Err(SetupError::TimeStepTooLarge {
+                dt_s: long_s,
+                max_s,
+            });
+        }
+        Ok(())
+    }
+
     /// Refresh the motion snapshot of body `b`'s spheres ([`Sphere::sync_motion`]).
     fn sync_spheres_of(&mut self, b: usize) {
         let body = &self.bodies[b];
@@ -536,4 +595,14 @@ pub(crate) fn quat_matrix_f64(q: [f64; 4]) -> [[f64; 3]; 3] {
             1.0 - 2.0 * (x * x + y * y),
         ],
     ]
+}
+
+/// The Rayleigh time of a sphere of radius `radius_m` (m) and material `mat`, s.
+fn sphere_rayleigh_s(radius_m: f64, mat: &Material) -> f64 {
+    rayleigh_time_s(
+        radius_m,
+        mat.density_g_mm3 / DENSITY_KG_M3_TO_G_MM3,
+        mat.youngs_modulus_mpa / STRESS_PA_TO_MPA,
+        mat.poisson,
+    )
 }

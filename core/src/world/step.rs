@@ -7,6 +7,7 @@ use crate::error::StepError;
 use crate::num::{Scalar, Vec3};
 use crate::step::bonds::{prepare, remove_broken, BondPart, BondShared, Clock, MIN_BONDS_PER_PART};
 use crate::step::integration::IntegratePart;
+use crate::step::multirate::Cycle;
 use crate::step::narrow_phase::{ContactPart, Shared};
 use crate::step::parts::{hull, split_ranges, Parallel, Serial, MAX_PARTS};
 use crate::step::wall_motion::move_walls;
@@ -82,6 +83,16 @@ impl<S: Scalar> World<'_, S> {
                 dt_s: self.dt_s,
                 max_s,
             });
+        }
+        if self.slow_stride > 1 {
+            let long_s = self.dt_s * f64::from(self.slow_stride);
+            let max_s = self.max_slow_timestep_s();
+            if long_s > max_s {
+                return Err(StepError::TimeStepTooLarge {
+                    dt_s: long_s,
+                    max_s,
+                });
+            }
         }
         let result = self.stages(par, scratch);
         if result.is_err() {
@@ -196,6 +207,8 @@ impl<S: Scalar> World<'_, S> {
             bonded: self.bond_table.pairs(),
             offsets: live.offsets,
             dt: self.dt,
+            cycle: Cycle::at(self.steps, self.slow_stride, self.dt),
+            slow_pairs: false,
         };
         let mut jobs: heapless::Vec<ContactPart<'_, S>, N> = heapless::Vec::new();
         {
@@ -425,8 +438,9 @@ impl<S: Scalar> World<'_, S> {
             }
         }
         let (dt, g) = (self.dt, self.gravity);
+        let cycle = Cycle::at(self.steps, self.slow_stride, dt);
         par.for_each(&mut jobs, &|part: &mut IntegratePart<'_, S, SUMS>| {
-            part.run(dt, g)
+            part.run(dt, g, &cycle)
         });
         let times = part_times::<S, P, N>(par, jobs.len());
         let mut max_disp = S::ZERO;

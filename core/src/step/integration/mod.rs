@@ -28,6 +28,7 @@ mod single_sphere;
 use crate::body::{Body, BodyForce, Sphere};
 use crate::error::{Other, Stage, StepError};
 use crate::num::{Envelope, Scalar, Vec3};
+use crate::step::multirate::{cycle_mean, Cycle};
 use core::ops::Range;
 use rigid_body::{clump_envelope, state_of, step_body, Motion, OFFSET_BITS};
 use single_sphere::move_sphere;
@@ -54,9 +55,25 @@ pub(crate) struct IntegratePart<'w, S: Scalar, const SUMS: usize> {
 }
 
 impl<S: Scalar, const SUMS: usize> IntegratePart<'_, S, SUMS> {
-    /// Move every body of the part by one step `dt` (ms) under gravity `g` (mm/ms²).
-    pub(crate) fn run(&mut self, dt: S, g: Vec3<S>) {
-        self.result = self.integrate(dt, g);
+    /// Move every body of the part by one step `dt` (ms) under gravity `g` (mm/ms²); a slow
+    /// body only at the end of its `cycle`, by the long step ([`crate::step::multirate`]).
+    pub(crate) fn run(&mut self, dt: S, g: Vec3<S>, cycle: &Cycle<S>) {
+        self.result = self.integrate(dt, g, cycle);
+    }
+
+    /// Within a cycle, a slow body keeps its sums: the contact parts' arenas of body `id`
+    /// are added to its own accumulator and cleared (they must be zero between steps).
+    #[inline(always)]
+    fn keep_sums(&mut self, id: usize) {
+        let Some(((_, own), beyond)) = self.sums.split_first_mut() else {
+            return;
+        };
+        let kept = &mut own[id - self.first_body];
+        for (range, arena) in beyond.iter_mut() {
+            if range.contains(&id) {
+                kept.merge(&core::mem::take(&mut arena[id - range.start]));
+            }
+        }
     }
 
     /// The summed loads of body `id`, with every accumulator of it cleared. The first arena
@@ -76,11 +93,19 @@ impl<S: Scalar, const SUMS: usize> IntegratePart<'_, S, SUMS> {
         total
     }
 
-    fn integrate(&mut self, dt: S, g: Vec3<S>) -> Result<(), StepError> {
+    fn integrate(&mut self, dt: S, g: Vec3<S>, cycle: &Cycle<S>) -> Result<(), StepError> {
         let mut max_disp = S::ZERO;
         for k in 0..self.bodies.len() {
             let id = self.first_body + k;
-            let sums = self.take_sums(id);
+            let (sums, dt) = if cycle.multirate() && self.bodies[k].slow {
+                if !cycle.slow_moves {
+                    self.keep_sums(id);
+                    continue;
+                }
+                (cycle_mean(&self.take_sums(id), cycle.stride), cycle.long_dt)
+            } else {
+                (self.take_sums(id), dt)
+            };
             let b = &mut self.bodies[k];
             let first = b.first_sphere as usize - self.first_sphere;
             let spheres = &mut self.spheres[first..first + b.sphere_count as usize];

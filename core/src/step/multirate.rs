@@ -1,0 +1,169 @@
+//! Multi-rate stepping: bodies marked *slow* move once every `k` steps, by one long step of
+//! k·dt, while every other body moves every step.
+//!
+//! **Why.** A field couples two time scales. The plant's thin stalks, held by stiff bonds,
+//! need dt ≈ 8e-7 s (the bond bound of [`crate::bond`]); the soil's grains (8 mm, 10 MPa) are
+//! stable at 40 % of their Rayleigh time, about 3e-4 s, and their collisions with the
+//! machine last about a millisecond. Stepping every grain at the plant's dt spends most of a
+//! field's step on soil that changes by nothing from one step to the next
+//! (`core/API_NOTES.md`, "Multi-rate stepping").
+//!
+//! **How** (a cycle is k steps, k = [`crate::world::World::set_slow_stride`]):
+//! - a contact between two slow bodies is evaluated once, at the cycle's first step, with
+//!   the long step k·dt for its tangential spring; its loads count k times (they act over
+//!   the whole cycle);
+//! - every other contact (slow with fast, kinematic or wall), every bond and the air drag
+//!   act every step, as without slow bodies; a slow body sums them over the cycle;
+//! - at the cycle's last step a slow body moves by symplectic Euler with the long step:
+//!   v ← v + (F̄/m + g)·k·dt, x ← x + v·k·dt, F̄ = ΣF/k the mean force of the cycle (the
+//!   same for the torque and the rolling torque). The momentum a slow body receives is the
+//!   impulse of the cycle, to the rounding of F̄ (2^-33 N per component);
+//! - between, a slow body stands where it was, with its velocity: its partners see it as a
+//!   body moving at that velocity through a fixed point, and its tangential springs grow by
+//!   the relative velocity, so the cycle's displacement is counted once, when it moves.
+//!
+//! With k = 1 (the default) nothing of this runs and the step is the single-rate step, bit
+//! for bit. In fixed point the sums are exact integers, so the bits do not depend on the
+//! number of threads. A world with slow bodies can be checkpointed only between cycles
+//! ([`crate::world::checkpoint`]): within one, the sums of the cycle are not in the words.
+//!
+//! ```
+//! use arachis_core::prelude::*;
+//! use arachis_core::scenario::materials::POD;
+//! let lengths = StorageLengths::for_spheres(1, 1);
+//! let mut storage = arachis_core::owned::OwnedStorage::<Fx>::new(lengths);
+//! let mut w = World::new(storage.storage()).unwrap();
+//! let m = w.add_material(POD).unwrap();
+//! let b = w.add_sphere(SphereSpec::at_rest(m, 0.004, [0.0, 0.0, 1.0])).unwrap();
+//! w.set_gravity_m_s2([0.0, 0.0, -9.81]).unwrap();
+//! w.set_timestep_s(1e-5).unwrap();
+//! w.set_slow_stride(4).unwrap();
+//! w.set_body_slow(b, true).unwrap();
+//! w.run(3).unwrap(); // within the cycle: the slow sphere has not moved yet
+//! assert_eq!(w.body(b).velocity.z, Fx::ZERO);
+//! w.run(1).unwrap(); // the cycle's last step: one long step of 4·dt
+//! let v = w.body(b).velocity.z.to_f64(); // mm/ms = m/s
+//! assert!((v + 9.81 * 4e-5).abs() < 1e-9);
+//! ```
+
+use crate::body::{BodyForce, Sphere};
+use crate::num::{Scalar, Vec3};
+
+/// The largest slow stride k: the long step's loads count k times, so k bounds how far a
+/// contact's load is multiplied before its overflow test.
+pub const MAX_SLOW_STRIDE: u32 = 256;
+
+/// Where a step lies in its cycle.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Cycle<S> {
+    /// k, steps per cycle (1: single-rate).
+    pub stride: u32,
+    /// Contacts between slow bodies are evaluated at this step (the cycle's first).
+    pub slow_contacts: bool,
+    /// Slow bodies move at the end of this step (the cycle's last).
+    pub slow_moves: bool,
+    /// The long step k·dt, ms.
+    pub long_dt: S,
+}
+
+impl<S: Scalar> Cycle<S> {
+    /// The cycle position of the step that follows `steps` completed steps, with stride `k`
+    /// and time step `dt` (ms).
+    pub fn at(steps: u64, stride: u32, dt: S) -> Self {
+        let k = u64::from(stride.max(1));
+        Cycle {
+            stride: stride.max(1),
+            slow_contacts: steps % k == 0,
+            slow_moves: (steps + 1) % k == 0,
+            long_dt: dt.mul_int(stride.max(1) as i32),
+        }
+    }
+
+    /// Whether any body may be slow (k > 1).
+    #[inline(always)]
+    pub fn multirate(&self) -> bool {
+        self.stride > 1
+    }
+}
+
+/// Whether the contact of spheres `si` and `sj` is between two slow bodies.
+#[inline(always)]
+pub(crate) fn slow_pair<S>(si: &Sphere<S>, sj: &Sphere<S>) -> bool {
+    si.slow & sj.slow
+}
+
+/// A slow pair's loads count `stride` times (`x.mul_int`, which reports an overflow as an
+/// invalid value).
+#[inline(always)]
+pub(crate) fn times<S: Scalar>(v: Vec3<S>, stride: u32) -> Vec3<S> {
+    v.map(|x| x.mul_int(stride as i32))
+}
+
+/// The mean of a cycle's sums, ΣF/k (rounded to nearest in fixed point).
+pub(crate) fn cycle_mean<S: Scalar>(sums: &BodyForce<S>, stride: u32) -> BodyForce<S> {
+    let k = S::ONE.mul_int(stride as i32);
+    let mut mean = BodyForce::default();
+    mean.add_force(sums.force().map(|x| x / k));
+    mean.add_torque(sums.torque().map(|x| x / k));
+    mean.add_roll(sums.roll() / k);
+    mean
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::num::Fx;
+
+    #[test]
+    fn a_cycle_evaluates_slow_contacts_first_and_moves_slow_bodies_last() {
+        let dt = Fx::from_f64(0.001);
+        let at = |s| Cycle::at(s, 4, dt);
+        let phases: [(bool, bool); 8] =
+            core::array::from_fn(|s| (at(s as u64).slow_contacts, at(s as u64).slow_moves));
+        assert_eq!(
+            phases,
+            [
+                (true, false),
+                (false, false),
+                (false, false),
+                (false, true),
+                (true, false),
+                (false, false),
+                (false, false),
+                (false, true)
+            ]
+        );
+        assert_eq!(at(0).long_dt, dt.mul_int(4));
+        // Single-rate: every step does both, with dt itself.
+        let one = Cycle::at(7, 1, dt);
+        assert!(one.slow_contacts && one.slow_moves && !one.multirate());
+        assert_eq!(one.long_dt, dt);
+    }
+
+    #[test]
+    fn the_cycle_mean_is_the_sum_over_k_rounded_to_nearest() {
+        let mut sums = BodyForce::<Fx>::default();
+        let f = Vec3::new(Fx::from_f64(3.0), Fx::from_f64(-1.0), Fx::from_f64(0.5));
+        for _ in 0..3 {
+            sums.add_force(f);
+            sums.add_torque(f.map(|x| -x));
+            sums.add_roll(Fx::ONE);
+        }
+        let mean = cycle_mean(&sums, 3);
+        assert_eq!(mean.force(), f);
+        assert_eq!(mean.torque(), f.map(|x| -x));
+        assert_eq!(mean.roll(), Fx::ONE);
+        // 1 N over 3 steps: 1/3 N to half a unit of 2^-32 N.
+        let mut one = BodyForce::<Fx>::default();
+        one.add_force(Vec3::new(Fx::ONE, Fx::ZERO, Fx::ZERO));
+        let third = cycle_mean(&one, 3).force().x.to_f64();
+        assert!((third - 1.0 / 3.0).abs() <= 0.5 / 4_294_967_296.0);
+    }
+
+    #[test]
+    fn a_load_counted_k_times_that_leaves_the_range_is_invalid() {
+        let big = Vec3::new(Fx::from_f64(1.0e8), Fx::ZERO, Fx::ZERO);
+        assert!(times(big, 16).is_valid());
+        assert!(!times(big, 256).is_valid());
+    }
+}
