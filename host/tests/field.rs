@@ -168,11 +168,13 @@ fn a_bare_bed_settles_until_its_floor_carries_the_grains_weight() {
     assert!((ratio - 1.0).abs() < 0.02, "floor/weight = {ratio}");
 }
 
-/// The shipped field's digest after 40 steps (seed 1), as the core gave it before its stages
-/// hinted memory loads (05f0b85: `arachis field testdata/peanut-plant/field-huayu.toml
-/// --steps 40`). The field's 34 612 sphere records outgrow the second-level cache, so its
-/// steps take the hinted loads (`arachis_core::step::prefetch`), which must change no bit.
-const SHIPPED_DIGEST_40_STEPS: u64 = 0x1f54_e69f_92bc_78c7;
+/// The shipped field's digest after 40 steps (seed 1): `arachis field
+/// testdata/peanut-plant/field-huayu.toml --steps 40`. The field's 34 612 sphere records
+/// outgrow the second-level cache, so its steps take the hinted loads
+/// (`arachis_core::step::prefetch`), which must change no bit. Since the soil steps on a
+/// stride of 10 (multi-rate stepping) the digest is this one; with every grain stepping
+/// every step it was 1f54e69f92bc78c7, as before the hints (05f0b85).
+const SHIPPED_DIGEST_40_STEPS: u64 = 0xd5b4_8f0e_a61b_608b;
 
 #[test]
 fn the_field_steps_with_the_same_bits_on_one_and_two_threads() {
@@ -221,6 +223,7 @@ fn bad_field_input_exits_2_naming_file_line_and_key_and_writes_nothing() {
             "no-such-variety.toml",
             "no-such-variety.toml",
         ),
+        ("slow_stride = 10", "slow_stride = 3", "soil.slow_stride"),
     ];
     for (from, to, named) in cases {
         assert!(text.contains(from), "{from}");
@@ -247,4 +250,53 @@ fn bad_field_input_exits_2_naming_file_line_and_key_and_writes_nothing() {
     let line = text.lines().position(|l| l.starts_with("rows = ")).unwrap() + 1;
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains(&format!(":{line}:")), "line {line}: {err}");
+    // A run that would end within a cycle of the soil's steps (its last checkpoint could not
+    // be written) is refused before any step.
+    let out = arachis(&[
+        "field",
+        shipped_path().to_str().unwrap(),
+        "--steps",
+        "45",
+        "--vtk",
+        vtk.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--steps 45") && err.contains("multiple of 10"),
+        "{err}"
+    );
+    assert!(!vtk.exists());
+}
+
+#[test]
+fn the_soil_takes_its_long_step_only_where_its_own_bound_allows() {
+    let stride_of = |spec: &FieldSpec| {
+        let field = spec.plant(1).unwrap();
+        let mut arena = OwnedStorage::<Fx>::new(field.storage_lengths(spec));
+        let mut bonds = OwnedBonds::<Fx>::new(field.bond_count());
+        let mut w = World::new(arena.storage()).unwrap();
+        w.attach_bond_storage(bonds.storage()).unwrap();
+        field.load_into(spec, &mut w).unwrap();
+        let bound = arachis::field::world::TIMESTEP_SAFETY * w.max_slow_timestep_s();
+        (w.slow_stride(), w.timestep_s(), bound)
+    };
+    // The shipped field: the stalks' bonds set dt, and the grains take the file's 10 steps.
+    let spec = shipped();
+    assert_eq!(spec.soil.slow_stride, 10);
+    let (k, dt, bound) = stride_of(&spec);
+    assert_eq!(k, 10);
+    assert!(f64::from(k) * dt <= bound);
+    // 250 asked for: the largest divisor of 250 within the grains' bound (dt ≈ 8.3e-7 s,
+    // bound ≈ 2.2e-4 s: 250 steps are 2.1e-4 s).
+    let mut wide = shipped();
+    wide.soil.slow_stride = 250;
+    let (k, dt, bound) = stride_of(&wide);
+    assert!(f64::from(k) * dt <= bound && 250 % k == 0, "{k}");
+    // A bare bed: the grains set dt themselves, so they step every step.
+    let mut bare = shipped();
+    bare.field.plants_per_hole = 0;
+    bare.field.ridge_length_m = 0.2;
+    bare.field.rows = 1;
+    assert_eq!(stride_of(&bare).0, 1);
 }

@@ -136,9 +136,17 @@ fn on_the_shipped_field_the_pass_lasts_until_the_bed_has_passed_the_collector() 
     let distance = field.bed_max_m[0] - field.bed_min_m[0] + machine.harvester.start_gap_m
         - rig.layout.opening.x_m.0;
     let expected = machine.harvester.settle_s + distance / machine.harvester.forward_speed_m_s;
-    let pass_s = rig.pass_steps(dt) as f64 * dt;
+    // Whole cycles of the soil's steps: within one cycle of the pass's end.
+    let stride = w.slow_stride();
+    let steps = rig.pass_steps(dt, stride);
+    assert_eq!(
+        steps % u64::from(stride),
+        0,
+        "{steps} steps, stride {stride}"
+    );
+    let pass_s = steps as f64 * dt;
     assert!(
-        pass_s >= expected && pass_s < expected + dt,
+        pass_s >= expected && pass_s < expected + f64::from(stride) * dt,
         "{pass_s} s against {expected} s"
     );
     // The edge starts before the bed, every part at rest behind it.

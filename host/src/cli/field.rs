@@ -176,6 +176,9 @@ struct FieldLine {
     /// Shallowest and deepest pod centre below the surface, mm.
     pod_depth_mm: [f64; 2],
     dt_s: f64,
+    /// Field steps per step of the soil ([`crate::field::Soil::slow_stride`], as the soil's
+    /// stable step allows it).
+    soil_stride: u32,
     steps: u64,
     simulated_s: f64,
     wall_seconds: f64,
@@ -423,9 +426,16 @@ fn run_one(
         _ => None,
     };
     let steps = match &rig {
-        Some(r) if args.pass => r.pass_steps(world.timestep_s()),
+        Some(r) if args.pass => r.pass_steps(world.timestep_s(), world.slow_stride()),
         _ => args.steps,
     };
+    if steps % u64::from(world.slow_stride()) != 0 {
+        anyhow::bail!(
+            "--steps {steps}: the soil steps once every {} steps (soil.slow_stride), so the run must end between its steps: give a multiple of {}",
+            world.slow_stride(),
+            world.slow_stride()
+        );
+    }
     let wanted = Header::new(inputs_hash(spec, machine, seed), seed, 0, 0.0, None);
     let (mut done, wall_before) = match &outputs.checkpoint {
         Some(path) => checkpoint::resume(path, &wanted, steps, &mut world, rig.as_mut())?,
@@ -496,7 +506,8 @@ fn run_one(
             Some(HarvestLine {
                 machine: m.harvester.name.clone(),
                 machine_s: r.elapsed_s(&world),
-                pass_s: r.pass_steps(world.timestep_s()) as f64 * world.timestep_s(),
+                pass_s: r.pass_steps(world.timestep_s(), world.slow_stride()) as f64
+                    * world.timestep_s(),
                 roots_cut: r.roots_let_go(),
                 loss_rate_pct: pods.loss_percent(),
                 unpicked_pct: pods.unpicked_percent(),
@@ -535,6 +546,7 @@ fn run_one(
             -pod_z_mm.iter().copied().fold(f64::MAX, f64::min),
         ],
         dt_s: world.timestep_s(),
+        soil_stride: world.slow_stride(),
         steps,
         simulated_s: world.time_s(),
         wall_seconds,

@@ -133,8 +133,20 @@ pub struct Soil {
     pub poisson: f64,
     /// JKR work of adhesion Γ of every soil contact, J/m² (0: none): pull-off 1.5πΓR*.
     pub jkr_work_of_adhesion_j_m2: f64,
+    /// Steps of the field per step of the soil: the grains move once every `slow_stride`
+    /// steps, by one long step (multi-rate stepping, [`arachis_core::step::multirate`]); 1
+    /// steps them with the plant. It divides the harvester's chunk
+    /// ([`crate::harvester::rig::CHUNK_STEPS`]), so that every checkpoint and frame falls
+    /// between the soil's steps.
+    #[serde(default = "single_rate")]
+    pub slow_stride: u32,
     /// The soil's contacts.
     pub contacts: SoilContacts,
+}
+
+/// The default [`Soil::slow_stride`]: the soil steps with the plant.
+fn single_rate() -> u32 {
+    1
 }
 
 /// A field file.
@@ -278,6 +290,16 @@ impl FieldSpec {
             bad(
                 &["soil", "jkr_work_of_adhesion_j_m2"],
                 format!("must be ≥ 0 J/m², got {}", s.jkr_work_of_adhesion_j_m2),
+            );
+        }
+        let chunk = crate::harvester::rig::CHUNK_STEPS;
+        if s.slow_stride == 0 || chunk % u64::from(s.slow_stride) != 0 {
+            bad(
+                &["soil", "slow_stride"],
+                format!(
+                    "must divide the harvester's {chunk}-step chunk (1, 2, 5, 10, 25, 50, 125 or 250), got {}",
+                    s.slow_stride
+                ),
             );
         }
         for (name, c) in [

@@ -165,6 +165,12 @@ impl Field {
             ))
             .map_err(|e| core(&e))?;
         set_safe_timestep(world)?;
+        for &g in &grains {
+            world.set_body_slow(g, true).map_err(|e| core(&e))?;
+        }
+        world
+            .set_slow_stride(soil_stride(s.slow_stride, world))
+            .map_err(|e| core(&e))?;
         Ok(Loaded {
             roots,
             pods,
@@ -180,6 +186,18 @@ impl Field {
 pub fn set_safe_timestep<S: Scalar>(world: &mut World<'_, S>) -> Result<(), String> {
     let dt = TIMESTEP_SAFETY * world.max_timestep_s().min(world.bond_max_timestep_s());
     world.set_timestep_s(dt).map_err(|e| e.to_string())
+}
+
+/// The soil's steps per field step: the largest divisor of `wanted` (the field file's
+/// [`crate::field::Soil::slow_stride`], a divisor of the harvester's chunk) whose long step
+/// stays within [`TIMESTEP_SAFETY`] × the grains' stable bound. A bed whose time step the
+/// grains set themselves (no plants) steps them every step.
+fn soil_stride<S: Scalar>(wanted: u32, world: &World<'_, S>) -> u32 {
+    let bound_s = TIMESTEP_SAFETY * world.max_slow_timestep_s();
+    (1..=wanted.max(1))
+        .rev()
+        .find(|k| wanted % k == 0 && f64::from(*k) * world.timestep_s() <= bound_s)
+        .unwrap_or(1)
 }
 
 /// The effects of every soil pair: JKR cohesion of the field file's work of adhesion.

@@ -195,9 +195,11 @@ impl Rig {
         world.time_s() - self.start_time_s
     }
 
-    /// Steps from the start until the collector has passed the bed's rear end, at `dt_s`.
-    pub fn pass_steps(&self, dt_s: f64) -> u64 {
-        ((self.end_time_s - self.start_time_s) / dt_s).ceil() as u64
+    /// Steps from the start until the collector has passed the bed's rear end, at `dt_s`,
+    /// rounded up to whole cycles of `stride` steps (the soil's, [`crate::field::Soil::slow_stride`]).
+    pub fn pass_steps(&self, dt_s: f64, stride: u32) -> u64 {
+        let steps = ((self.end_time_s - self.start_time_s) / dt_s).ceil() as u64;
+        steps.div_ceil(u64::from(stride.max(1))) * u64::from(stride.max(1))
     }
 
     /// Runs `steps` steps (in chunks of [`CHUNK_STEPS`]), moving the machine and checking
