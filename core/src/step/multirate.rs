@@ -89,7 +89,8 @@ impl<S: Scalar> Cycle<S> {
 /// Whether the contact of spheres `si` and `sj` is between two slow bodies.
 #[inline(always)]
 pub(crate) fn slow_pair<S>(si: &Sphere<S>, sj: &Sphere<S>) -> bool {
-    si.slow & sj.slow
+    // The owner first: a fast owner's partner record is not read for the test.
+    si.slow && sj.slow
 }
 
 /// A slow pair's loads count `stride` times (`x.mul_int`, which reports an overflow as an

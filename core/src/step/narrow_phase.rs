@@ -128,10 +128,21 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
     /// touching ones, by the fused law where the pair and the envelope allow, else by their
     /// terms.
     fn scan(&mut self, sh: &Shared<'_, S>) -> Result<(), StepError> {
+        // One instance for single-rate worlds, in which the slow-pair test is not compiled
+        // (with the test in the one loop, the DESIGN §8 pour took 1.7 % longer).
+        if sh.cycle.multirate() {
+            self.scan_with::<true>(sh)
+        } else {
+            self.scan_with::<false>(sh)
+        }
+    }
+
+    /// [`ContactPart::scan`], with slow bodies (`MULTIRATE`) or without.
+    #[inline(always)]
+    fn scan_with<const MULTIRATE: bool>(&mut self, sh: &Shared<'_, S>) -> Result<(), StepError> {
         let base = sh.offsets[self.spheres.start] as usize;
         let with_effects = !self.effects.is_empty();
         let hint = worth_hinting(sh.spheres);
-        let multirate = sh.cycle.multirate();
         let slow_sh = sh.for_slow_pairs();
         let single_rate = sh;
         for i in self.spheres.clone() {
@@ -149,7 +160,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
                 // Two slow bodies meet once a cycle, with the long step; their entry keeps
                 // its history in between (`crate::step::multirate`).
                 let slow =
-                    multirate && !is_wall(key) && slow_pair(si, &single_rate.spheres[key as usize]);
+                    MULTIRATE && !is_wall(key) && slow_pair(si, &single_rate.spheres[key as usize]);
                 if slow && !single_rate.cycle.slow_contacts {
                     continue;
                 }

@@ -58,7 +58,12 @@ impl<S: Scalar, const SUMS: usize> IntegratePart<'_, S, SUMS> {
     /// Move every body of the part by one step `dt` (ms) under gravity `g` (mm/ms²); a slow
     /// body only at the end of its `cycle`, by the long step ([`crate::step::multirate`]).
     pub(crate) fn run(&mut self, dt: S, g: Vec3<S>, cycle: &Cycle<S>) {
-        self.result = self.integrate(dt, g, cycle);
+        // One instance for single-rate worlds, whose time step is the same for every body.
+        self.result = if cycle.multirate() {
+            self.integrate::<true>(dt, g, cycle)
+        } else {
+            self.integrate::<false>(dt, g, cycle)
+        };
     }
 
     /// Within a cycle, a slow body keeps its sums: the contact parts' arenas of body `id`
@@ -93,11 +98,16 @@ impl<S: Scalar, const SUMS: usize> IntegratePart<'_, S, SUMS> {
         total
     }
 
-    fn integrate(&mut self, dt: S, g: Vec3<S>, cycle: &Cycle<S>) -> Result<(), StepError> {
+    fn integrate<const MULTIRATE: bool>(
+        &mut self,
+        dt: S,
+        g: Vec3<S>,
+        cycle: &Cycle<S>,
+    ) -> Result<(), StepError> {
         let mut max_disp = S::ZERO;
         for k in 0..self.bodies.len() {
             let id = self.first_body + k;
-            let (sums, dt) = if cycle.multirate() && self.bodies[k].slow {
+            let (sums, dt) = if MULTIRATE && self.bodies[k].slow {
                 if !cycle.slow_moves {
                     self.keep_sums(id);
                     continue;
