@@ -24,7 +24,7 @@
 //! any fixed-point overflow into [`StepError::Overflow`] naming both parties.
 
 use super::multirate::{slow_pair, times, Cycle};
-use super::neighbour_list::{is_wall, key_of, LIVE_FLAG};
+use super::neighbour_list::{is_wall, key_of, LIVE_FLAG, SLOW_PAIR_FLAG};
 use super::parts::{widen, PairTable};
 use super::prefetch::{prefetch_record, worth_hinting};
 use crate::body::{Body, BodyForce, Sphere};
@@ -155,14 +155,22 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
             let mut owner = BodyForce::<S>::default();
             let mut owner_touched = false;
             for e in range {
-                let entry = self.entries[e];
+                let mut entry = self.entries[e];
                 let key = key_of(entry.partner);
                 // Two slow bodies meet once a cycle, with the long step; their entry keeps
-                // its history in between (`crate::step::multirate`).
-                let slow =
-                    MULTIRATE && !is_wall(key) && slow_pair(si, &single_rate.spheres[key as usize]);
+                // its history in between (`crate::step::multirate`), and its flag says so
+                // without a read of the partner's record.
+                let slow = MULTIRATE
+                    && !is_wall(key)
+                    && (entry.partner & SLOW_PAIR_FLAG != 0
+                        || slow_pair(si, &single_rate.spheres[key as usize]));
                 if slow && !single_rate.cycle.slow_contacts {
                     continue;
+                }
+                if slow {
+                    // Every write of the entry below keeps the flag.
+                    entry.partner |= SLOW_PAIR_FLAG;
+                    self.entries[e].partner = entry.partner;
                 }
                 let sh = if slow { &slow_sh } else { single_rate };
                 let fast = if is_wall(key) {
@@ -378,7 +386,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         a.add_torque(load.torque_j);
         a.add_roll(load.roll_j);
         self.entries[e] = NeighbourEntry {
-            partner: j as u32 | LIVE_FLAG,
+            partner: j as u32 | LIVE_FLAG | (entry.partner & SLOW_PAIR_FLAG),
             delta: delta.map(S::from_fast),
         };
         if JKR {
@@ -505,8 +513,9 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
     /// Store the history and live flag of entry `e`.
     #[inline(always)]
     fn write(&mut self, e: usize, key: u32, state: &ContactState<S>, live: bool) {
+        let slow = self.entries[e].partner & SLOW_PAIR_FLAG;
         self.entries[e] = NeighbourEntry {
-            partner: if live { key | LIVE_FLAG } else { key },
+            partner: if live { key | LIVE_FLAG } else { key } | slow,
             delta: state.delta,
         };
         if let Some(f) = self.effects.get_mut(e) {

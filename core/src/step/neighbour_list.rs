@@ -64,10 +64,16 @@ const PREFETCH_CANDIDATES_AHEAD: usize = 4;
 /// (|d|² < 3·2^30 mm² stays in range).
 const FAST_SQUARE_REACH_BITS: i32 = 15;
 
-/// The partner key without [`LIVE_FLAG`].
+/// Partner-key flag of an entry between two slow bodies ([`crate::step::multirate`]),
+/// set by the contact scan at a cycle's first step: at the steps between, the scan skips
+/// the entry without reading its partner's record. A rebuilt entry starts without it. Free
+/// in every key for the same reason as [`LIVE_FLAG`] (sphere ids below 2^29).
+pub const SLOW_PAIR_FLAG: u32 = 0x2000_0000;
+
+/// The partner key without [`LIVE_FLAG`] and [`SLOW_PAIR_FLAG`].
 #[inline(always)]
 pub fn key_of(partner: u32) -> u32 {
-    partner & !LIVE_FLAG
+    partner & !(LIVE_FLAG | SLOW_PAIR_FLAG)
 }
 
 /// The live half of the list, read-only.
