@@ -78,11 +78,25 @@ impl<S: Scalar> Cycle<S> {
             long_dt: dt.mul_int(stride.max(1) as i32),
         }
     }
+}
 
+impl<S> Cycle<S> {
     /// Whether any body may be slow (k > 1).
     #[inline(always)]
     pub fn multirate(&self) -> bool {
         self.stride > 1
+    }
+
+    /// A multi-rate step at which the slow bodies' contacts are evaluated: the contact
+    /// stage's cost lies elsewhere among the bodies than at the steps between, so a
+    /// threaded step balances it apart ([`crate::step::balance`]).
+    pub fn is_slow_contact_step(&self) -> bool {
+        self.multirate() && self.slow_contacts
+    }
+
+    /// A multi-rate step at whose end the slow bodies move (balanced apart, as above).
+    pub fn is_slow_move_step(&self) -> bool {
+        self.multirate() && self.slow_moves
     }
 }
 

@@ -99,6 +99,11 @@ pub(crate) struct StepBalance {
     pub contacts: StageBalance,
     pub bonds: StageBalance,
     pub integration: StageBalance,
+    /// With slow bodies, the contact stage of a cycle's first step (the slow bodies'
+    /// contacts too) and the integration of its last (the slow bodies move): their costs lie
+    /// elsewhere among the bodies than at the steps between ([`crate::step::multirate`]).
+    pub slow_contacts: StageBalance,
+    pub slow_integration: StageBalance,
 }
 
 impl<'a, S: Scalar> World<'a, S> {

@@ -187,11 +187,17 @@ impl<S: Scalar> World<'_, S> {
     ) -> Result<Ranges<N>, StepError> {
         let nb = self.n_bodies as usize;
         let ns = self.n_spheres as usize;
+        let cycle = Cycle::at(self.steps, self.slow_stride, self.dt);
         let mut ranges = Ranges::<N>::new();
         {
             let offsets = self.list.live().offsets;
             let entries_before = |b: usize| offsets[self.first_sphere_of(b)] as u64;
-            let weights = self.balance.contacts.weights(nb, &entries_before);
+            let balance = if cycle.is_slow_contact_step() {
+                &self.balance.slow_contacts
+            } else {
+                &self.balance.contacts
+            };
+            let weights = balance.weights(nb, &entries_before);
             split_ranges(nb, parts, |b| weights.before(b), |_| true, &mut ranges);
         }
         let sphere_ranges: Ranges<N> = ranges
@@ -207,7 +213,7 @@ impl<S: Scalar> World<'_, S> {
             bonded: self.bond_table.pairs(),
             offsets: live.offsets,
             dt: self.dt,
-            cycle: Cycle::at(self.steps, self.slow_stride, self.dt),
+            cycle,
             slow_pairs: false,
         };
         let mut jobs: heapless::Vec<ContactPart<'_, S>, N> = heapless::Vec::new();
@@ -267,7 +273,12 @@ impl<S: Scalar> World<'_, S> {
         if let Some(times) = times {
             let offsets = self.list.live().offsets;
             let parts = measured::<N>(&ranges, &times, |b| offsets[self.first_sphere_of(b)] as u64);
-            self.balance.contacts.record(nb, parts.iter().cloned());
+            let balance = if cycle.is_slow_contact_step() {
+                &mut self.balance.slow_contacts
+            } else {
+                &mut self.balance.contacts
+            };
+            balance.record(nb, parts.iter().cloned());
         }
         for (w, sum) in self.walls.iter_mut().zip(wall_sums.iter()) {
             w.force = Vec3::new(
@@ -376,10 +387,16 @@ impl<S: Scalar> World<'_, S> {
     ) -> Result<S, StepError> {
         let nb = self.n_bodies as usize;
         let ns = self.n_spheres as usize;
+        let cycle = Cycle::at(self.steps, self.slow_stride, self.dt);
         let mut ranges = Ranges::<N>::new();
         {
             let spheres_before = |b: usize| self.first_sphere_of(b) as u64;
-            let weights = self.balance.integration.weights(nb, &spheres_before);
+            let balance = if cycle.is_slow_move_step() {
+                &self.balance.slow_integration
+            } else {
+                &self.balance.integration
+            };
+            let weights = balance.weights(nb, &spheres_before);
             split_ranges(nb, parts, |b| weights.before(b), |_| true, &mut ranges);
         }
         let sphere_starts: heapless::Vec<usize, N> = ranges
@@ -438,7 +455,6 @@ impl<S: Scalar> World<'_, S> {
             }
         }
         let (dt, g) = (self.dt, self.gravity);
-        let cycle = Cycle::at(self.steps, self.slow_stride, dt);
         par.for_each(&mut jobs, &|part: &mut IntegratePart<'_, S, SUMS>| {
             part.run(dt, g, &cycle)
         });
@@ -451,7 +467,12 @@ impl<S: Scalar> World<'_, S> {
         drop(jobs);
         if let Some(times) = times {
             let parts = measured::<N>(&ranges, &times, |b| self.first_sphere_of(b) as u64);
-            self.balance.integration.record(nb, parts.iter().cloned());
+            let balance = if cycle.is_slow_move_step() {
+                &mut self.balance.slow_integration
+            } else {
+                &mut self.balance.integration
+            };
+            balance.record(nb, parts.iter().cloned());
         }
         Ok(max_disp)
     }
