@@ -21,6 +21,9 @@
 //! step index out of bounds. On an error the world may be partly overwritten: set it up
 //! again before using it.
 //!
+//! A world with slow bodies ([`crate::step::multirate`]) writes one only between cycles
+//! ([`CheckpointError::MidCycle`]): within a cycle, the slow bodies' sums are not in the words.
+//!
 //! One field list serves both directions ([`StateWords`]: a writer records each word, a
 //! reader replaces it), so writing and reading cannot disagree on the order.
 //!
