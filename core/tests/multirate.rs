@@ -133,34 +133,30 @@ fn stack(k: u32, slow: [bool; 2]) -> (f64, f64, f64) {
 fn a_stack_of_slow_and_fast_spheres_rests_where_hertz_puts_it() {
     // Single rate: both overlaps follow Hertz, δ = (3F/(4E*√R*))^(2/3). The top sphere
     // rests at R1 − δ_floor + R1 + R2 − δ_pair above the floor.
-    let (floor_1, weight, z_1) = stack(1, [false, false]);
     let e_star = e_star_mpa(&POD, &POD); // MPa = N/mm²
     let m_top_n = sphere_mass_g(5.0, POD.density_kg_m3) * 1e-3 * G;
     let delta =
         |f_n: f64, r_star_mm: f64| (3.0 * f_n / (4.0 * e_star * r_star_mm.sqrt())).powf(2.0 / 3.0);
-    // The floor against the 4 mm sphere: R* = 4 mm, E* as pod–pod (the floor is pod here).
-    let z_theory = 4.0 - delta(weight, 4.0) + 4.0 + 5.0 - delta(m_top_n, 20.0 / 9.0);
-    assert!(
-        (floor_1 - weight).abs() < 1e-3 * weight,
-        "single rate floor {floor_1} N"
-    );
-    assert!(
-        (z_1 - z_theory).abs() < 2e-4,
-        "single rate top {z_1} mm vs {z_theory}"
-    );
     // Multi-rate: with the bottom sphere slow, the top one's contact acts every step and the
     // bottom sphere's cycle mean carries it; with both slow, their contact acts once a cycle
     // and counts 16 times. The same equilibrium, within 2e-4 mm (4 % of the pair's 4.6 µm
     // overlap; a load counted once instead of 16 times would overlap 6.3 times as far).
-    for slow in [[true, false], [false, true], [true, true]] {
-        let (floor_k, _, z_k) = stack(16, slow);
+    for (k, slow) in [
+        (1, [false, false]),
+        (16, [true, false]),
+        (16, [false, true]),
+        (16, [true, true]),
+    ] {
+        let (floor, weight, z) = stack(k, slow);
+        // The floor against the 4 mm sphere: R* = 4 mm, E* as pod–pod (the floor is pod).
+        let z_theory = 4.0 - delta(weight, 4.0) + 4.0 + 5.0 - delta(m_top_n, 20.0 / 9.0);
         assert!(
-            (floor_k - weight).abs() < 1e-3 * weight,
-            "{slow:?}: floor {floor_k} N"
+            (floor - weight).abs() < 1e-3 * weight,
+            "k {k}, {slow:?}: floor {floor} N"
         );
         assert!(
-            (z_k - z_theory).abs() < 2e-4,
-            "{slow:?}: top {z_k} mm vs {z_theory}"
+            (z - z_theory).abs() < 2e-4,
+            "k {k}, {slow:?}: top {z} mm vs {z_theory}"
         );
     }
 }
@@ -295,4 +291,29 @@ fn bad_strides_and_long_steps_are_refused() {
     let before = w.digest();
     assert!(matches!(w.step(), Err(StepError::TimeStepTooLarge { .. })));
     assert_eq!(w.digest(), before);
+}
+
+#[test]
+fn a_body_no_longer_slow_meets_its_partners_every_step() {
+    // Two copies of a bed, all slow for 0.25 s (landed and colliding; their entries between
+    // slow bodies are flagged by then), then every mark taken off: one keeps stride 4, the other goes back to
+    // single-rate stepping. With no slow body left, both must step alike.
+    let bed = BenchBed {
+        particles: 120,
+        seed: 9,
+    };
+    let run = |back_to_one: bool| {
+        let mut arenas = Owned::<Fx>::with_lengths(bed.storage_lengths());
+        let mut w = bed_world(&mut arenas, &bed, 1e-5, 4, |_| true);
+        w.run(25_000).unwrap();
+        for id in 0..w.bodies().len() as u32 {
+            w.set_body_slow(BodyId(id), false).unwrap();
+        }
+        if back_to_one {
+            w.set_slow_stride(1).unwrap();
+        }
+        w.run(2_000).unwrap();
+        w.digest()
+    };
+    assert_eq!(run(false), run(true));
 }

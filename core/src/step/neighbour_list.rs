@@ -299,7 +299,8 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
         let r = self.half_range(self.current);
         let live = r.start..r.start + last as usize;
         for e in self.entries[live.clone()].iter_mut() {
-            let mut key = e.partner as u64;
+            // The slow-pair flag is a cache of the scan's: the words never hold it.
+            let mut key = (e.partner & !SLOW_PAIR_FLAG) as u64;
             v.word(&mut key)?;
             let partner = key_of(key as u32);
             let bad = if is_wall(partner) {
@@ -632,7 +633,12 @@ impl<S: Scalar> Writer<'_, S> {
             .map(|k| old.start + k);
         let (entry, effects) = match carried {
             Some(k) => (
-                self.old.entries[k],
+                NeighbourEntry {
+                    // The slow-pair flag holds only until a rebuild: a body marked slow or
+                    // not since then invalidated the list.
+                    partner: self.old.entries[k].partner & !SLOW_PAIR_FLAG,
+                    delta: self.old.entries[k].delta,
+                },
                 self.old.effects.get(k).copied().unwrap_or_default(),
             ),
             None => (

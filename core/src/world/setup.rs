@@ -545,6 +545,10 @@ impl<S: Scalar> World<'_, S> {
             self.min_rayleigh_slow_s = old;
             return Err(e);
         }
+        if self.bodies[id.0 as usize].slow != slow {
+            // Entries flagged as slow pairs (`SLOW_PAIR_FLAG`) are rebuilt without the flag.
+            self.list.invalidate();
+        }
         self.bodies[id.0 as usize].slow = slow;
         for s in &mut self.spheres[spheres] {
             s.slow = slow;
@@ -554,15 +558,17 @@ impl<S: Scalar> World<'_, S> {
 
     /// The long step stride·dt against the slow spheres' stable bound.
     fn check_long_step(&self) -> Result<(), SetupError> {
+        match self.long_step_excess() {
+            Some((dt_s, max_s)) => Err(SetupError::TimeStepTooLarge { dt_s, max_s }),
+            None => Ok(()),
+        }
+    }
+
+    /// The long step stride·dt and the slow spheres' bound, s, when it exceeds the bound.
+    pub(crate) fn long_step_excess(&self) -> Option<(f64, f64)> {
         let long_s = self.dt_s * f64::from(self.slow_stride);
         let max_s = self.max_slow_timestep_s();
-        if self.slow_stride > 1 && long_s > max_s {
-            return Err(SetupError::TimeStepTooLarge {
-                dt_s: long_s,
-                max_s,
-            });
-        }
-        Ok(())
+        (self.slow_stride > 1 && long_s > max_s).then_some((long_s, max_s))
     }
 
     /// Refresh the motion snapshot of body `b`'s spheres ([`Sphere::sync_motion`]).

@@ -84,15 +84,8 @@ impl<S: Scalar> World<'_, S> {
                 max_s,
             });
         }
-        if self.slow_stride > 1 {
-            let long_s = self.dt_s * f64::from(self.slow_stride);
-            let max_s = self.max_slow_timestep_s();
-            if long_s > max_s {
-                return Err(StepError::TimeStepTooLarge {
-                    dt_s: long_s,
-                    max_s,
-                });
-            }
+        if let Some((dt_s, max_s)) = self.long_step_excess() {
+            return Err(StepError::TimeStepTooLarge { dt_s, max_s });
         }
         let result = self.stages(par, scratch);
         if result.is_err() {
