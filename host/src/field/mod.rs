@@ -135,9 +135,8 @@ pub struct Soil {
     pub jkr_work_of_adhesion_j_m2: f64,
     /// Steps of the field per step of the soil: the grains move once every `slow_stride`
     /// steps, by one long step (multi-rate stepping, [`arachis_core::step::multirate`]); 1
-    /// steps them with the plant. It divides the harvester's chunk
-    /// ([`crate::harvester::rig::CHUNK_STEPS`]), so that every checkpoint and frame falls
-    /// between the soil's steps.
+    /// steps them with the plant. It divides the field's chunk ([`CHUNK_STEPS`]), so that
+    /// every checkpoint and frame falls between the soil's steps.
     #[serde(default = "single_rate")]
     pub slow_stride: u32,
     /// The soil's contacts.
@@ -161,6 +160,12 @@ pub struct FieldSpec {
     #[serde(skip)]
     pub variety: Option<Variety>,
 }
+
+/// Steps of a field run's chunk: a harvester checks the pods and sets its parts' velocities
+/// after each (a 9 Hz shake is then followed by about 500 chords per period at the field's
+/// 8e-7 s step, [`crate::harvester::rig`]), and checkpoints and frames fall between chunks,
+/// so the soil's stride divides it ([`Soil::slow_stride`]).
+pub const CHUNK_STEPS: u64 = 250;
 
 /// Most rows on one ridge.
 pub const MAX_ROWS: usize = 16;
@@ -292,7 +297,7 @@ impl FieldSpec {
                 format!("must be ≥ 0 J/m², got {}", s.jkr_work_of_adhesion_j_m2),
             );
         }
-        let chunk = crate::harvester::rig::CHUNK_STEPS;
+        let chunk = CHUNK_STEPS;
         if s.slow_stride == 0 || chunk % u64::from(s.slow_stride) != 0 {
             bad(
                 &["soil", "slow_stride"],

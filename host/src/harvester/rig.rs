@@ -29,9 +29,9 @@ use crate::field::world::{set_safe_timestep, Loaded};
 use crate::field::Field;
 use crate::harvest::pass::{root, POD_STEEL_CONTACT, STALK_STEEL_CONTACT};
 
-/// Steps between checks of the pods and updates of the parts' velocities (a 9 Hz shake is
-/// then followed by about 500 chords per period at the field's 8e-7 s step).
-pub const CHUNK_STEPS: u64 = 250;
+/// Steps between checks of the pods and updates of the parts' velocities: the field's chunk
+/// ([`crate::field::CHUNK_STEPS`]).
+pub use crate::field::CHUNK_STEPS;
 /// Steel against steel (kinematic parts only meet each other, so only its validity matters).
 const STEEL_STEEL_CONTACT: PairSpec = POD_STEEL_CONTACT;
 
