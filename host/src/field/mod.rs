@@ -302,7 +302,7 @@ impl FieldSpec {
             bad(
                 &["soil", "slow_stride"],
                 format!(
-                    "must divide the harvester's {chunk}-step chunk (1, 2, 5, 10, 25, 50, 125 or 250), got {}",
+                    "must divide the field's {chunk}-step chunk (1, 2, 5, 10, 25, 50, 125 or 250), got {}",
                     s.slow_stride
                 ),
             );

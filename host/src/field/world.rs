@@ -189,7 +189,7 @@ pub fn set_safe_timestep<S: Scalar>(world: &mut World<'_, S>) -> Result<(), Stri
 }
 
 /// The soil's steps per field step: the largest divisor of `wanted` (the field file's
-/// [`crate::field::Soil::slow_stride`], a divisor of the harvester's chunk) whose long step
+/// [`crate::field::Soil::slow_stride`], a divisor of the field's chunk) whose long step
 /// stays within [`TIMESTEP_SAFETY`] × the grains' stable bound. A bed whose time step the
 /// grains set themselves (no plants) steps them every step.
 fn soil_stride<S: Scalar>(wanted: u32, world: &World<'_, S>) -> u32 {
