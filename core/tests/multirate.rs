@@ -296,8 +296,8 @@ fn bad_strides_and_long_steps_are_refused() {
 #[test]
 fn a_body_no_longer_slow_meets_its_partners_every_step() {
     // Two copies of a bed, all slow for 0.25 s (landed and colliding; their entries between
-    // slow bodies are flagged by then), then every mark taken off: one keeps stride 4, the other goes back to
-    // single-rate stepping. With no slow body left, both must step alike.
+    // slow bodies are flagged by then), then every mark taken off: one keeps stride 4, the
+    // other goes back to single-rate stepping. With no slow body left, both must step alike.
     let bed = BenchBed {
         particles: 120,
         seed: 9,
