@@ -60,6 +60,11 @@ pub struct Header {
     pub steps_done: u64,
     /// Wall time of those steps, summed over every session that ran them, s.
     pub wall_seconds: f64,
+    /// CPU time of those steps, every thread, summed over every session, s: what a run
+    /// paused or slowed by other programs still spent (0 in files written before
+    /// 2026-12-02, and where the system gives no CPU clock).
+    #[serde(default)]
+    pub cpu_seconds: f64,
     /// The harvester's own state, if one is mounted.
     pub rig: Option<RigState>,
     /// State words that follow the line.
@@ -84,6 +89,7 @@ impl Header {
             seed,
             steps_done,
             wall_seconds,
+            cpu_seconds: 0.0,
             rig,
             words: 0,
             checksum: String::new(),
@@ -195,16 +201,16 @@ pub fn restore(path: &Path, words: &[u64], world: &mut World<'_, Fx>) -> anyhow:
 
 /// Goes on from the checkpoint at `path`, if there is one, of the run `wanted` describes:
 /// puts its state into `world` and `rig`, and returns the steps it had done and their wall
-/// time, s ((0, 0) without one).
+/// and CPU time, s ((0, 0, 0) without one).
 pub fn resume(
     path: &Path,
     wanted: &Header,
     steps: u64,
     world: &mut World<'_, Fx>,
     rig: Option<&mut Rig>,
-) -> anyhow::Result<(u64, f64)> {
+) -> anyhow::Result<(u64, f64, f64)> {
     let Some((header, words)) = read(path)? else {
-        return Ok((0, 0.0));
+        return Ok((0, 0.0, 0.0));
     };
     let refuse = |why: String| {
         anyhow::anyhow!(
@@ -239,10 +245,11 @@ pub fn resume(
         );
     }
     eprintln!(
-        "field: going on from {} at step {} of {steps} ({:.0} s of wall time so far)",
+        "field: going on from {} at step {} of {steps} ({:.0} s of wall time and {:.0} s of CPU so far)",
         path.display(),
         header.steps_done,
-        header.wall_seconds
+        header.wall_seconds,
+        header.cpu_seconds
     );
-    Ok((header.steps_done, header.wall_seconds))
+    Ok((header.steps_done, header.wall_seconds, header.cpu_seconds))
 }

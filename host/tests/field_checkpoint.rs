@@ -62,6 +62,13 @@ fn a_stopped_run_goes_on_to_the_bits_of_one_never_stopped() {
     let header: Value = serde_json::from_slice(line).unwrap();
     assert_eq!(header["steps_done"].as_u64(), Some(STEPS / 2));
     assert_eq!(header["seed"].as_u64(), Some(1));
+    // It also counts the CPU time the steps took (Linux's process clock, in 10 ms ticks):
+    // more than nothing, and no more than the run's threads could spend in its wall time.
+    let cpu = |v: &Value| v["cpu_seconds"].as_f64().unwrap();
+    assert!(cpu(&header) > 0.0, "{header}");
+    assert!(cpu(&header) <= 2.0 * first["wall_seconds"].as_f64().unwrap() + 0.02);
+    // The printed line is taken just after the last save.
+    assert!(cpu(&header) <= cpu(&first) && cpu(&first) - cpu(&header) < 0.5);
 
     let (second, stderr) = field("2", &files, &["--steps", &steps, "--checkpoint", ckpt_s]);
     assert!(
@@ -74,6 +81,10 @@ fn a_stopped_run_goes_on_to_the_bits_of_one_never_stopped() {
     assert!(
         wall(&second) >= wall(&first),
         "the wall time counts both sessions"
+    );
+    assert!(
+        cpu(&second) > cpu(&first),
+        "the CPU time counts both sessions"
     );
 
     // Run again, it is done: nothing is stepped and the result is the same.

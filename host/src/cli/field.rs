@@ -182,6 +182,9 @@ struct FieldLine {
     steps: u64,
     simulated_s: f64,
     wall_seconds: f64,
+    /// CPU time of the steps, every thread, s (summed over the sessions of a resumed run;
+    /// unlike the wall time, not inflated by a pause or by other programs).
+    cpu_seconds: f64,
     threads: usize,
     digest: String,
     /// With a harvester: where the pods are so far.
@@ -437,11 +440,17 @@ fn run_one(
         );
     }
     let wanted = Header::new(inputs_hash(spec, machine, seed), seed, 0, 0.0, None);
-    let (mut done, wall_before) = match &outputs.checkpoint {
+    let (mut done, wall_before, cpu_before) = match &outputs.checkpoint {
         Some(path) => checkpoint::resume(path, &wanted, steps, &mut world, rig.as_mut())?,
-        None => (0, 0.0),
+        None => (0, 0.0, 0.0),
     };
     let started = Instant::now();
+    // The process's CPU clock counts every replicate run so far: this one's starts here.
+    let cpu_started = super::simulate::process_cpu_seconds();
+    let cpu_spent = || {
+        let now = super::simulate::process_cpu_seconds();
+        cpu_before + now.zip(cpu_started).map_or(0.0, |(n, s)| n - s)
+    };
     let mut saved = Instant::now();
     let every = std::time::Duration::from_secs(args.checkpoint_minutes * SECONDS_PER_MINUTE);
     let bar = super::steps_bar(label, steps);
@@ -460,6 +469,7 @@ fn run_one(
             let header = Header {
                 steps_done: done,
                 wall_seconds: wall,
+                cpu_seconds: cpu_spent(),
                 rig: rig.map(Rig::state),
                 ..wanted.clone()
             };
@@ -500,6 +510,7 @@ fn run_one(
         f.collect(world.timestep_s())?;
     }
     let wall_seconds = wall_before + started.elapsed().as_secs_f64();
+    let cpu_seconds = cpu_spent();
     let harvest = match (&rig, machine) {
         (Some(r), Some(m)) => {
             let pods = r.tally(&world);
@@ -550,6 +561,7 @@ fn run_one(
         steps,
         simulated_s: world.time_s(),
         wall_seconds,
+        cpu_seconds,
         threads: crate::stepping::run_threads(),
         digest: format!("{:016x}", world.digest()),
         harvest,
