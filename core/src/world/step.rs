@@ -155,9 +155,10 @@ impl<S: Scalar> World<'_, S> {
         parts: usize,
         scratch: &mut [ThreadScratch<'_, S>],
     ) -> Result<S, StepError> {
-        let mut touched = self.contact_stage::<P, N>(par, parts, scratch)?;
+        let cycle = Cycle::at(self.steps, self.slow_stride, self.dt);
+        let mut touched = self.contact_stage::<P, N>(par, parts, scratch, &cycle)?;
         self.bond_stage::<P, N>(par, parts, scratch, &mut touched)?;
-        self.integration_stage::<P, N, SUMS>(par, parts, scratch, &touched)
+        self.integration_stage::<P, N, SUMS>(par, parts, scratch, &touched, &cycle)
     }
 
     /// The first sphere of body `b` (the sphere count for `b` = the body count).
@@ -177,10 +178,10 @@ impl<S: Scalar> World<'_, S> {
         par: &P,
         parts: usize,
         scratch: &mut [ThreadScratch<'_, S>],
+        cycle: &Cycle<S>,
     ) -> Result<Ranges<N>, StepError> {
         let nb = self.n_bodies as usize;
         let ns = self.n_spheres as usize;
-        let cycle = Cycle::at(self.steps, self.slow_stride, self.dt);
         let mut ranges = Ranges::<N>::new();
         {
             let offsets = self.list.live().offsets;
@@ -206,7 +207,7 @@ impl<S: Scalar> World<'_, S> {
             bonded: self.bond_table.pairs(),
             offsets: live.offsets,
             dt: self.dt,
-            cycle,
+            cycle: *cycle,
             slow_pairs: false,
         };
         let mut jobs: heapless::Vec<ContactPart<'_, S>, N> = heapless::Vec::new();
@@ -377,10 +378,10 @@ impl<S: Scalar> World<'_, S> {
         parts: usize,
         scratch: &mut [ThreadScratch<'_, S>],
         touched: &Ranges<N>,
+        cycle: &Cycle<S>,
     ) -> Result<S, StepError> {
         let nb = self.n_bodies as usize;
         let ns = self.n_spheres as usize;
-        let cycle = Cycle::at(self.steps, self.slow_stride, self.dt);
         let mut ranges = Ranges::<N>::new();
         {
             let spheres_before = |b: usize| self.first_sphere_of(b) as u64;
@@ -449,7 +450,7 @@ impl<S: Scalar> World<'_, S> {
         }
         let (dt, g) = (self.dt, self.gravity);
         par.for_each(&mut jobs, &|part: &mut IntegratePart<'_, S, SUMS>| {
-            part.run(dt, g, &cycle)
+            part.run(dt, g, cycle)
         });
         let times = part_times::<S, P, N>(par, jobs.len());
         let mut max_disp = S::ZERO;

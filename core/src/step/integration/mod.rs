@@ -68,6 +68,8 @@ impl<S: Scalar, const SUMS: usize> IntegratePart<'_, S, SUMS> {
 
     /// Within a cycle, a slow body keeps its sums: the contact parts' arenas of body `id`
     /// are added to its own accumulator and cleared (they must be zero between steps).
+    /// [`Self::take_sums`] keeps its own loop: written as this and a take, it cost the
+    /// DESIGN §8 pour 1.35 % more instructions.
     #[inline(always)]
     fn keep_sums(&mut self, id: usize) {
         let Some(((_, own), beyond)) = self.sums.split_first_mut() else {
