@@ -25,10 +25,7 @@ fi
 # their own: run inside the harness they hold one of its slots (and, one campaign at a time,
 # often both) while the cores idle. So they run from the host's scenario binary beside the
 # rest; its path is read from cargo's record of the build.
-scenarios=$(cargo test --release --workspace --no-run --message-format=json-render-diagnostics |
-    grep '"src_path":"[^"]*/host/tests/scenarios.rs"' |
-    grep -o '"executable":"[^"]*"' | cut -d'"' -f4)
-[ -x "$scenarios" ] || { echo "test-all.sh: the host's scenario binary was not built" >&2; exit 1; }
+scenarios=$(scripts/scenario-binary.sh host)
 slurm_log=$(mktemp)
 (cd host && "$scenarios" slurm_cluster:: >"$slurm_log" 2>&1) &
 slurm_tests=$!

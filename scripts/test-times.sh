@@ -9,7 +9,9 @@
 # is passed to the test binary as test-name filters usually are. The Slurm tests are skipped
 # (test-all.sh runs them beside the rest; they mostly wait for the scheduler). Times are wall
 # seconds with the harness's usual two tests at a time, so a test that shares the machine
-# with another reads longer than alone: compare them within one run.
+# with another reads longer than alone: compare them within one run. Tests that use rayon
+# share its one pool, so a test can also wait behind another's jobs (measured 2026-12-02:
+# the harvest rig's conformance test read 150 s in the full run and takes 2.3 s alone).
 #
 # Why RUSTC_BOOTSTRAP: per-test times are an unstable option of the stable toolchain's test
 # harness (`-Z unstable-options --report-time`); the variable lets the stable harness accept
@@ -25,12 +27,7 @@ host | core) ;;
     exit 2
     ;;
 esac
-# The workspace build, as test-all.sh makes it (one crate alone unifies other features and
-# builds anew).
-binary=$(cargo test --release --workspace --no-run --message-format=json-render-diagnostics |
-    grep "\"src_path\":\"[^\"]*/$crate/tests/scenarios.rs\"" |
-    grep -o '"executable":"[^"]*"' | cut -d'"' -f4)
-[ -x "$binary" ] || { echo "test-times.sh: the $crate scenario binary was not built" >&2; exit 1; }
+binary=$(scripts/scenario-binary.sh "$crate")
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 start=$(date +%s)
