@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # Runs every test of the workspace: all crates in a release build (the simulation-heavy
-# scenario tests need optimised code, and nothing is skipped there), the core again in a
-# debug build (golden digests must be identical in both profiles, and debug builds check
-# integer overflow in the test code), and the core's fixed-point tests with the opt-in
-# `float-estimate` square root, which must give the same bits as the default integer-only one.
+# scenario tests need optimised code, and nothing is skipped there), the core's unit and
+# scenario tests again in the test profile, with debug assertions and overflow checks on
+# (golden digests must be identical in both profiles, and overflow checks catch a wrapping
+# operation in the core's unchecked paths and in the test code; the workspace's Cargo.toml
+# says why that profile optimises the core at level 1; its doc tests ran above), and the
+# core's fixed-point tests with the opt-in `float-estimate` square root, which must give the
+# same bits as the default integer-only one.
 #
 # The cluster executor's tests (host/tests/slurm_cluster.rs) need a one-node Slurm cluster:
 # it is started here (scripts/slurm-local.sh installs slurm-wlm and munge when missing) and
@@ -39,6 +42,9 @@ rm -f "$slurm_log"
 [ "$rest_status" -eq 0 ] || exit "$rest_status"
 [ "$slurm_status" -eq 0 ] || { echo "the Slurm tests failed (above)" >&2; exit 1; }
 
-cargo test -p arachis-core
-cargo test --release -p arachis-core --features float-estimate --lib
-cargo test --release -p arachis-core --features float-estimate --test scenarios digest_scenarios::
+cargo test -p arachis-core --lib --test scenarios
+# Both float-estimate test binaries are built by one command, so that they compile at once.
+float_estimate=(--release -p arachis-core --features float-estimate)
+cargo test "${float_estimate[@]}" --lib --test scenarios --no-run
+cargo test "${float_estimate[@]}" --lib
+cargo test "${float_estimate[@]}" --test scenarios digest_scenarios::
