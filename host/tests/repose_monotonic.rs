@@ -2,8 +2,8 @@
 //! rolling friction, on the real DEM rig (cylinder lifting, `rigs::repose_cylinder`).
 //!
 //! Cost: the test pile of `quick_pile_support` (150 pods in the quick mode's cylinder scaling,
-//! 3 spheres per pod), about 4 CPU-s a pile in release; 3 levels × 16 placement seeds = 48
-//! piles, run 2 at a time (100 s on 2 cores).
+//! 3 spheres per pod), about 4 CPU-s a pile in release; 16 placement seeds at the base and at
+//! low μs, [`ROLLING_SEEDS`] of them at low μr: 40 piles, run 2 at a time.
 //!
 //! Design: a shared base at the seed's calibrated pair (μs = 0.854, μr = 0.346; e = 0.335,
 //! seed 000 §3.6.2) and one low level per factor (μs = 0.3, μr = 0.01), far below the
@@ -24,6 +24,10 @@
 //! pairs was too low for a 5–7° pile scatter, not the rise too small. Over seeds 1–16: μs
 //! 0.3 → 0.854 rises by 8.57° on average (p = 1.2e-4), μr 0.01 → 0.346 by 20.04°
 //! (p = 1.2e-10); α and the minimum rise are unchanged.
+//!
+//! Why eight for rolling friction: its rise is about 20° against a 5–7° scatter, so half the
+//! pairs still give p far below α (measured over seeds 1–8: see the test's output), and the
+//! eight piles it saves are a sixth of the test's cost (CI's 20 minutes, README).
 
 use std::sync::Arc;
 
@@ -36,6 +40,8 @@ use quick_pile_support::test_pile_study;
 
 /// Placement seeds (paired across levels).
 const SEEDS: [u64; 16] = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16];
+/// How many of [`SEEDS`] (the first) the low rolling-friction level is run with.
+const ROLLING_SEEDS: usize = 8;
 /// One-sided significance level of the paired t-test.
 const ALPHA: f64 = 0.01;
 /// Seed 000 §3.6.2: calibrated pod–pod restitution, static and rolling friction.
@@ -62,8 +68,15 @@ fn repose_angle_rises_with_pod_pod_static_and_rolling_friction() {
         (MU_S_LOW, MU_R_HIGH),
         (MU_S_HIGH, MU_R_LOW),
     ];
+    let seeds_of = |l: usize| {
+        if l == 2 {
+            &SEEDS[..ROLLING_SEEDS]
+        } else {
+            &SEEDS[..]
+        }
+    };
     let runs: Vec<(usize, u64)> = (0..levels.len())
-        .flat_map(|l| SEEDS.map(|s| (l, s)))
+        .flat_map(|l| seeds_of(l).iter().map(move |&s| (l, s)))
         .collect();
     let angles: Vec<f64> = runs
         .par_iter()
@@ -89,8 +102,7 @@ fn repose_angle_rises_with_pod_pod_static_and_rolling_friction() {
         })
         .collect();
     let k = SEEDS.len();
-    let at = |l: usize| &angles[l * k..(l + 1) * k];
-    let (base, low_s, low_r) = (at(0), at(1), at(2));
+    let (base, low_s, low_r) = (&angles[..k], &angles[k..2 * k], &angles[2 * k..]);
     let mean = |a: &[f64]| a.iter().sum::<f64>() / a.len() as f64;
     eprintln!(
         "seeds {SEEDS:?}: base (μs {MU_S_HIGH}, μr {MU_R_HIGH}) {base:.2?}°; \
@@ -101,20 +113,24 @@ fn repose_angle_rises_with_pod_pod_static_and_rolling_friction() {
         mean(low_s),
         mean(base),
         mean(low_r),
-        mean(base)
+        mean(&base[..ROLLING_SEEDS])
     );
+    // Paired by seed: the low μr level's seeds are the first of the base's.
     let rises = |low: &[f64]| -> Vec<f64> { base.iter().zip(low).map(|(b, l)| b - l).collect() };
     for (name, low) in [("static friction", low_s), ("rolling friction", low_r)] {
         let d = rises(low);
+        let seeds = &SEEDS[..d.len()];
         let (m, p) = paired_t_test(&d);
-        eprintln!("{name}: rises {d:.2?}°, mean {m:.2}°, one-sided p = {p:.2e}");
+        eprintln!(
+            "{name}: rises {d:.2?}° over seeds {seeds:?}, mean {m:.2}°, one-sided p = {p:.2e}"
+        );
         assert!(
             m > MIN_RISE_DEG,
-            "{name}: mean rise {m:.2}° over seeds {SEEDS:?}"
+            "{name}: mean rise {m:.2}° over seeds {seeds:?}"
         );
         assert!(
             p < ALPHA,
-            "{name}: one-sided p = {p:.3} over seeds {SEEDS:?} (rises {d:.2?}°)"
+            "{name}: one-sided p = {p:.3} over seeds {seeds:?} (rises {d:.2?}°)"
         );
     }
 }
