@@ -229,24 +229,43 @@ fn slow_and_fast_bodies_step_with_the_same_bits_on_any_thread_count() {
     assert_ne!(bed_after(6_000, 1, true, 1).4, one);
 }
 
+/// Steps of 1e-5 s after which the checkpoint test's bed of 150 spheres has landed, at the
+/// end of a cycle of 5.
+const LANDED_STEPS: u64 = 40_005;
+
 #[test]
 fn checkpoints_fall_between_cycles_and_resume_bit_for_bit() {
     let bed = BenchBed {
-        particles: 80,
+        particles: 150,
         seed: 5,
     };
     let mut first = Owned::<Fx>::with_lengths(bed.storage_lengths());
     let mut w = bed_world(&mut first, &bed, 1e-5, 5, |id| id % 3 != 0);
-    w.run(1_003).unwrap();
+    // Late enough for slow pairs to touch (the bed has landed).
+    w.run(LANDED_STEPS - 2).unwrap();
     let mut words = Vec::new();
     assert_eq!(
         w.write_checkpoint(&mut WordWriter::new(|x| words.push(x))),
         Err(CheckpointError::MidCycle {
-            steps: 1_003,
+            steps: LANDED_STEPS - 2,
             stride: 5
         })
     );
     w.run(2).unwrap();
+    let slow = |id: u32| id % 3 != 0;
+    let slow_pairs: usize = (0..w.spheres().len() as u32)
+        .filter(|&s| slow(s))
+        .map(|s| {
+            w.contact_slots(s)
+                .filter(|c| c.partner < w.spheres().len() as u32 && slow(c.partner))
+                .count()
+        })
+        .sum();
+    assert!(
+        slow_pairs > 20,
+        "{slow_pairs} slow pairs touch, {} contacts",
+        w.contact_count()
+    );
     words.clear();
     w.write_checkpoint(&mut WordWriter::new(|x| words.push(x)))
         .unwrap();
@@ -257,6 +276,12 @@ fn checkpoints_fall_between_cycles_and_resume_bit_for_bit() {
         .unwrap();
     v.run(2_000).unwrap();
     assert_eq!(v.digest(), w.digest());
+    // Writing one changed nothing for the writer either (the words do not hold the list's
+    // slow-pair flags, which both worlds set again): the bits of a world that never wrote.
+    let mut third = Owned::<Fx>::with_lengths(bed.storage_lengths());
+    let mut u = bed_world(&mut third, &bed, 1e-5, 5, |id| id % 3 != 0);
+    u.run(LANDED_STEPS + 2_000).unwrap();
+    assert_eq!(u.digest(), w.digest());
 }
 
 #[test]

@@ -46,12 +46,57 @@
 //! assert!((v + 9.81 * 4e-5).abs() < 1e-9);
 //! ```
 
-use crate::body::{BodyForce, Sphere};
+use crate::body::{Body, BodyForce};
 use crate::num::{Scalar, Vec3};
+use core::ops::Range;
 
 /// The largest slow stride k: the long step's loads count k times, so k bounds how far a
 /// contact's load is multiplied before its overflow test.
 pub const MAX_SLOW_STRIDE: u32 = 256;
+
+/// The most runs of consecutive slow bodies [`SlowRuns`] keeps.
+const MAX_SLOW_RUNS: usize = 16;
+
+/// The fewest consecutive slow bodies [`SlowRuns`] keeps as a run: a shorter run costs the
+/// integration little when its bodies are tested one by one.
+const MIN_SLOW_RUN: usize = 64;
+
+/// The longest runs of consecutive slow bodies (body ids), in increasing order: between a
+/// cycle's moves the integration passes over each run without reading its bodies' records
+/// (about 240 bytes each, read only to find the slow mark: a third of a field's integration
+/// time went to that load), and only gathers the contact parts' sums of its bodies. Bodies
+/// outside the runs are tested one by one, so the runs kept are an optimisation only: up to
+/// [`MAX_SLOW_RUNS`] runs of at least [`MIN_SLOW_RUN`] bodies, recomputed when a mark changes.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct SlowRuns {
+    runs: heapless::Vec<Range<usize>, MAX_SLOW_RUNS>,
+    /// Whether a body's mark changed since the runs were found.
+    stale: bool,
+}
+
+impl SlowRuns {
+    /// Note that a body's slow mark changed.
+    pub fn invalidate(&mut self) {
+        self.stale = true;
+    }
+
+    /// The runs of `bodies`, found again if a mark changed.
+    pub fn of<S>(&mut self, bodies: &[Body<S>]) -> &[Range<usize>] {
+        if self.stale {
+            self.runs.clear();
+            let mut start = 0;
+            while start < bodies.len() && !self.runs.is_full() {
+                let len = bodies[start..].iter().take_while(|b| b.slow).count();
+                if len >= MIN_SLOW_RUN {
+                    let _ = self.runs.push(start..start + len);
+                }
+                start += len.max(1);
+            }
+            self.stale = false;
+        }
+        &self.runs
+    }
+}
 
 /// Where a step lies in its cycle.
 #[derive(Clone, Copy, Debug)]
@@ -100,13 +145,6 @@ impl<S> Cycle<S> {
     }
 }
 
-/// Whether the contact of spheres `si` and `sj` is between two slow bodies.
-#[inline(always)]
-pub(crate) fn slow_pair<S>(si: &Sphere<S>, sj: &Sphere<S>) -> bool {
-    // The owner first: a fast owner's partner record is not read for the test.
-    si.slow && sj.slow
-}
-
 /// A slow pair's loads count `stride` times (`x.mul_int`, which reports an overflow as an
 /// invalid value).
 #[inline(always)]
@@ -128,6 +166,38 @@ pub(crate) fn cycle_mean<S: Scalar>(sums: &BodyForce<S>, stride: u32) -> BodyFor
 mod tests {
     use super::*;
     use crate::num::Fx;
+
+    #[test]
+    fn slow_runs_are_the_long_runs_of_slow_bodies_found_again_when_a_mark_changes() {
+        let mut bodies = alloc::vec![Body::<Fx>::default(); 400];
+        let mark = |bodies: &mut [Body<Fx>], r: Range<usize>| {
+            bodies[r].iter_mut().for_each(|b| b.slow = true);
+        };
+        // Runs of 100, 63 (too short) and 64 bodies.
+        mark(&mut bodies, 10..110);
+        mark(&mut bodies, 150..213);
+        mark(&mut bodies, 300..364);
+        let mut runs = SlowRuns::default();
+        assert!(runs.of(&bodies).is_empty(), "no mark noted yet");
+        runs.invalidate();
+        assert_eq!(runs.of(&bodies), [10..110, 300..364]);
+        mark(&mut bodies, 213..214);
+        assert_eq!(
+            runs.of(&bodies),
+            [10..110, 300..364],
+            "kept until a change is noted"
+        );
+        runs.invalidate();
+        assert_eq!(runs.of(&bodies), [10..110, 150..214, 300..364]);
+        // At most MAX_SLOW_RUNS are kept; the bodies of the others are tested one by one.
+        let mut many = alloc::vec![Body::<Fx>::default(); (MIN_SLOW_RUN + 1) * 20];
+        for r in 0..20 {
+            let start = r * (MIN_SLOW_RUN + 1);
+            mark(&mut many, start..start + MIN_SLOW_RUN);
+        }
+        runs.invalidate();
+        assert_eq!(runs.of(&many).len(), MAX_SLOW_RUNS);
+    }
 
     #[test]
     fn a_cycle_evaluates_slow_contacts_first_and_moves_slow_bodies_last() {

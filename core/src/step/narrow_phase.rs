@@ -23,7 +23,7 @@
 //! parts gives the same bits. One validity check per contact (force, torques, history) turns
 //! any fixed-point overflow into [`StepError::Overflow`] naming both parties.
 
-use super::multirate::{slow_pair, times, Cycle};
+use super::multirate::{times, Cycle};
 use super::neighbour_list::{is_wall, key_of, LIVE_FLAG, SLOW_PAIR_FLAG};
 use super::parts::{widen, PairTable};
 use super::prefetch::{prefetch_record, worth_hinting};
@@ -145,6 +145,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         let hint = worth_hinting(sh.spheres);
         let slow_sh = sh.for_slow_pairs();
         let single_rate = sh;
+        let between_cycles = MULTIRATE && !sh.cycle.slow_contacts;
         for i in self.spheres.clone() {
             let range = sh.offsets[i] as usize - base..sh.offsets[i + 1] as usize - base;
             if hint {
@@ -155,22 +156,16 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
             let mut owner = BodyForce::<S>::default();
             let mut owner_touched = false;
             for e in range {
-                let mut entry = self.entries[e];
+                let entry = self.entries[e];
                 let key = key_of(entry.partner);
                 // Two slow bodies meet once a cycle, with the long step; their entry keeps
-                // its history in between (`crate::step::multirate`), and its flag says so
-                // without a read of the partner's record.
-                let slow = MULTIRATE
-                    && !is_wall(key)
-                    && (entry.partner & SLOW_PAIR_FLAG != 0
-                        || slow_pair(si, &single_rate.spheres[key as usize]));
-                if slow && !single_rate.cycle.slow_contacts {
-                    continue;
-                }
-                if slow {
-                    // Every write of the entry below keeps the flag.
-                    entry.partner |= SLOW_PAIR_FLAG;
-                    self.entries[e].partner = entry.partner;
+                // its history in between (`crate::step::multirate`). The list flags their
+                // entries and keeps them after the owner's others (`SLOW_PAIR_FLAG`), so
+                // between a cycle's first step and the next the owner's first flagged entry
+                // ends its scan; every write below keeps the flag.
+                let slow = MULTIRATE && entry.partner & SLOW_PAIR_FLAG != 0;
+                if slow && between_cycles {
+                    break;
                 }
                 let sh = if slow { &slow_sh } else { single_rate };
                 let fast = if is_wall(key) {

@@ -64,10 +64,11 @@ const PREFETCH_CANDIDATES_AHEAD: usize = 4;
 /// (|d|² < 3·2^30 mm² stays in range).
 const FAST_SQUARE_REACH_BITS: i32 = 15;
 
-/// Partner-key flag of an entry between two slow bodies ([`crate::step::multirate`]),
-/// set by the contact scan at a cycle's first step: at the steps between, the scan skips
-/// the entry without reading its partner's record. A rebuilt entry starts without it. Free
-/// in every key for the same reason as [`LIVE_FLAG`] (sphere ids below 2^29).
+/// Partner-key flag of an entry between two slow bodies ([`crate::step::multirate`]). In a
+/// multi-rate world the list sets it and keeps a slow owner's flagged entries after its
+/// others ([`order_slow_pairs`]), so that at the steps between a cycle's first and the next
+/// the contact scan stops at an owner's first flagged entry: it neither evaluates nor reads
+/// the rest. Free in every key for the same reason as [`LIVE_FLAG`] (sphere ids below 2^29).
 pub const SLOW_PAIR_FLAG: u32 = 0x2000_0000;
 
 /// The partner key without [`LIVE_FLAG`] and [`SLOW_PAIR_FLAG`].
@@ -137,6 +138,9 @@ pub struct NeighbourList<'a, S> {
     /// Whether pairs of which neither side can respond are listed
     /// ([`crate::world::World::set_prescribed_contacts`]).
     pub(crate) prescribed_pairs: bool,
+    /// Whether the world steps at more than one rate, so that a slow owner's slow pairs are
+    /// flagged and kept last ([`SLOW_PAIR_FLAG`]).
+    slow_pairs_last: bool,
 }
 
 impl<'a, S: Scalar> NeighbourList<'a, S> {
@@ -181,6 +185,7 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
             builds: 0,
             skin_divisor: SKIN_DIVISOR,
             prescribed_pairs: true,
+            slow_pairs_last: false,
         })
     }
 
@@ -202,6 +207,39 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
     /// Mark the list stale (a sphere or wall was added).
     pub(crate) fn invalidate(&mut self) {
         self.valid = false;
+    }
+
+    /// Whether the world steps at more than one rate ([`SLOW_PAIR_FLAG`]); a change marks
+    /// the list stale, so that the next build orders it so or not.
+    pub(crate) fn set_multirate(&mut self, on: bool) {
+        if self.slow_pairs_last != on {
+            self.slow_pairs_last = on;
+            self.valid = false;
+        }
+    }
+
+    /// Flag and order the slow pairs of every slow owner of the live half
+    /// ([`order_slow_pairs`]), in a multi-rate world: a checkpoint's words do not hold the
+    /// flag, so a world that read one calls this.
+    pub(crate) fn order_live_slow_pairs(&mut self, spheres: &[Sphere<S>]) {
+        if !self.slow_pairs_last {
+            return;
+        }
+        let offsets = self.offsets_at(self.current);
+        let base = self.half_range(self.current).start;
+        for i in 0..self.listed.min(spheres.len()) {
+            if !spheres[i].slow {
+                continue;
+            }
+            let range = self.index[offsets.start + i] as usize + base
+                ..self.index[offsets.start + i + 1] as usize + base;
+            let effects = if self.effects.is_empty() {
+                &mut [][..]
+            } else {
+                &mut self.effects[range.clone()]
+            };
+            order_slow_pairs(&mut self.entries[range], effects, spheres);
+        }
     }
 
     /// Add `disp` (mm, the largest sphere or wall displacement of a step) to the drift bound
@@ -415,6 +453,7 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
                 .to_fast()
                 .within(FAST_SQUARE_REACH_BITS),
             prescribed_pairs: self.prescribed_pairs,
+            slow_pairs_last: self.slow_pairs_last,
             old: Live {
                 offsets: &old_offsets[..self.listed + 1],
                 entries: old_entries,
@@ -514,6 +553,8 @@ struct Scan<'s, S> {
     fast_squares: bool,
     /// Whether pairs of which neither side can respond are listed ([`cannot_respond`]).
     prescribed_pairs: bool,
+    /// Whether a slow owner's slow pairs are flagged and kept last ([`order_slow_pairs`]).
+    slow_pairs_last: bool,
     old: Live<'s, S>,
 }
 
@@ -538,6 +579,7 @@ impl<S: Scalar> RebuildPart<'_, S> {
         let hint = worth_hinting(spheres);
         for (k, i) in self.owners.clone().enumerate() {
             let si = &spheres[i];
+            let first = self.out.at;
             let reach_i = si.radius + sc.skin;
             let fixed_i = !sc.prescribed_pairs && cannot_respond(si);
             let [cx, cy, cz] = grid.coords(sc.cell_of[i]);
@@ -602,6 +644,14 @@ impl<S: Scalar> RebuildPart<'_, S> {
                     self.out.push(i, wall_key(w as u32, face))?;
                 }
             }
+            if sc.slow_pairs_last && si.slow {
+                let effects = if self.out.effects.is_empty() {
+                    &mut [][..]
+                } else {
+                    &mut self.out.effects[first..self.out.at]
+                };
+                order_slow_pairs(&mut self.out.entries[first..self.out.at], effects, spheres);
+            }
             self.ends[k] = self.out.at as u32;
         }
         Ok(())
@@ -634,8 +684,8 @@ impl<S: Scalar> Writer<'_, S> {
         let (entry, effects) = match carried {
             Some(k) => (
                 NeighbourEntry {
-                    // The slow-pair flag holds only until a rebuild: a body marked slow or
-                    // not since then invalidated the list.
+                    // The rebuild flags the slow pairs anew (a body marked slow or not
+                    // since the last build invalidated the list).
                     partner: self.old.entries[k].partner & !SLOW_PAIR_FLAG,
                     delta: self.old.entries[k].delta,
                 },
@@ -655,6 +705,33 @@ impl<S: Scalar> Writer<'_, S> {
         }
         self.at += 1;
         Ok(())
+    }
+}
+
+/// Flag the entries of one slow owner (and their effect history, if kept: empty or as long)
+/// whose partner is a slow sphere with [`SLOW_PAIR_FLAG`], and move them behind its other
+/// entries, each part in its order. A wall is never a slow partner. The order of an owner's
+/// entries changes no fixed-point bit: the loads are summed exactly and the digest hashes the
+/// contacts in partner order.
+fn order_slow_pairs<S: Scalar>(
+    entries: &mut [NeighbourEntry<S>],
+    effects: &mut [EffectHistory<S>],
+    spheres: &[Sphere<S>],
+) {
+    // A stable partition in place: an owner has a few dozen entries at most, so moving each
+    // other entry down past the slow pairs before it costs less than a scratch buffer.
+    let mut others = 0;
+    for k in 0..entries.len() {
+        let key = key_of(entries[k].partner);
+        if !is_wall(key) && spheres[key as usize].slow {
+            entries[k].partner |= SLOW_PAIR_FLAG;
+            continue;
+        }
+        entries[others..=k].rotate_right(1);
+        if !effects.is_empty() {
+            effects[others..=k].rotate_right(1);
+        }
+        others += 1;
     }
 }
 
@@ -703,6 +780,57 @@ mod tests {
     const LIFT_M_S: f64 = 0.05;
     /// Kept steps between two brute-force searches for touching pairs.
     const TOUCH_CHECK_EVERY: u32 = 3;
+
+    #[test]
+    fn a_slow_owners_slow_pairs_are_flagged_and_kept_last_in_order() {
+        use super::{is_wall, key_of, order_slow_pairs, SLOW_PAIR_FLAG};
+        use crate::body::Sphere;
+        use crate::contact::{EffectHistory, NeighbourEntry};
+        use crate::num::Scalar;
+        // Spheres 0–5: 1, 2 and 4 slow; the owner's entries in list order, a wall among them.
+        let spheres: Vec<Sphere<Fx>> = (0..6)
+            .map(|i| Sphere {
+                slow: matches!(i, 1 | 2 | 4),
+                ..Sphere::default()
+            })
+            .collect();
+        let wall = super::wall_key(0, 1);
+        let keys = [1, 3, 2, wall, 4, 5];
+        let mut entries: Vec<NeighbourEntry<Fx>> = keys
+            .iter()
+            .map(|&k| NeighbourEntry {
+                partner: k | super::LIVE_FLAG,
+                delta: Vec3::new(Fx::from_int(k as i32 & 0xff), Fx::ZERO, Fx::ZERO),
+            })
+            .collect();
+        let mut effects: Vec<EffectHistory<Fx>> = keys
+            .iter()
+            .map(|&k| EffectHistory {
+                max_overlap: Fx::from_int(k as i32 & 0xff),
+                ..EffectHistory::default()
+            })
+            .collect();
+        order_slow_pairs(&mut entries, &mut effects, &spheres);
+        let order: Vec<u32> = entries.iter().map(|e| key_of(e.partner)).collect();
+        assert_eq!(order, [3, wall, 5, 1, 2, 4]);
+        for (e, f) in entries.iter().zip(&effects) {
+            let k = key_of(e.partner);
+            let slow = !is_wall(k) && spheres[k as usize].slow;
+            assert_eq!(e.partner & SLOW_PAIR_FLAG != 0, slow, "entry {k}");
+            assert_ne!(
+                e.partner & super::LIVE_FLAG,
+                0,
+                "entry {k} keeps its live flag"
+            );
+            // The history moved with its entry.
+            assert_eq!(e.delta.x, Fx::from_int(k as i32 & 0xff));
+            assert_eq!(f.max_overlap, e.delta.x);
+        }
+        // Ordering an ordered owner again changes nothing.
+        let again = entries.clone();
+        order_slow_pairs(&mut entries, &mut effects, &spheres);
+        assert_eq!(entries, again);
+    }
 
     fn raw3(v: Vec3<Fx>) -> [i64; 3] {
         [v.x.raw(), v.y.raw(), v.z.raw()]

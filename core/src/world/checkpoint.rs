@@ -107,6 +107,10 @@ impl<S: Scalar> World<'_, S> {
         }
         let walls = self.walls.len() as u32;
         self.list.exchange(v, self.n_spheres, walls)?;
+        // The words do not hold the slow-pair flags of a multi-rate world's list, and the
+        // exchange clears them: set them again, for the writer as for the reader.
+        self.list
+            .order_live_slow_pairs(&self.spheres[..self.n_spheres as usize]);
         bonds(v, &mut self.bond_table, self.n_spheres)
     }
 }

@@ -52,6 +52,7 @@ use crate::num::{Scalar, Vec3};
 use crate::pair::PairParams;
 use crate::step::air_drag::AirDrag;
 use crate::step::balance::StageBalance;
+use crate::step::multirate::SlowRuns;
 use crate::step::neighbour_list::{key_of, NeighbourList, LIVE_FLAG};
 use crate::step::parts::PairTable;
 use crate::timestep::max_stable_dt_s;
@@ -84,6 +85,8 @@ pub struct World<'a, S: Scalar> {
     pub(crate) slow_stride: u32,
     /// Smallest Rayleigh time over the spheres of slow bodies, s (∞ with none).
     pub(crate) min_rayleigh_slow_s: f64,
+    /// Runs of consecutive slow bodies, for the integration ([`crate::step::multirate`]).
+    pub(crate) slow_runs: SlowRuns,
     /// Bonded-particle model state ([`crate::bond`]).
     pub(crate) bond_table: Bonds<'a, S>,
     /// Optional air drag (off by default; [`crate::effects`]).
@@ -149,6 +152,7 @@ impl<'a, S: Scalar> World<'a, S> {
             min_rayleigh_s: f64::INFINITY,
             slow_stride: 1,
             min_rayleigh_slow_s: f64::INFINITY,
+            slow_runs: SlowRuns::default(),
             bond_table: Bonds::empty(),
             air_drag: AirDrag::default(),
             balance: StepBalance::default(),
@@ -233,8 +237,9 @@ impl<'a, S: Scalar> World<'a, S> {
     }
 
     /// The live contacts of sphere `s` that carry history (sphere–sphere contacts it owns,
-    /// then its wall contacts), in list order; empty if out of range. Neighbour-list entries
-    /// of pairs that are not touching are skipped.
+    /// then its wall contacts; in a multi-rate world a slow sphere's contacts with other slow
+    /// spheres come last), in list order; empty if out of range. Neighbour-list entries of
+    /// pairs that are not touching are skipped.
     pub fn contact_slots(&self, s: u32) -> impl Iterator<Item = ContactSlot<S>> + '_ {
         let live = self.list.live();
         let range = if s < self.n_spheres {

@@ -520,6 +520,7 @@ impl<S: Scalar> World<'_, S> {
             self.slow_stride = old;
             return Err(e);
         }
+        self.list.set_multirate(stride > 1);
         Ok(())
     }
 
@@ -546,8 +547,9 @@ impl<S: Scalar> World<'_, S> {
             return Err(e);
         }
         if self.bodies[id.0 as usize].slow != slow {
-            // Entries flagged as slow pairs (`SLOW_PAIR_FLAG`) are rebuilt without the flag.
+            // The list flags and orders slow pairs (`SLOW_PAIR_FLAG`): rebuild it.
             self.list.invalidate();
+            self.slow_runs.invalidate();
         }
         self.bodies[id.0 as usize].slow = slow;
         for s in &mut self.spheres[spheres] {

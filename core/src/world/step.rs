@@ -397,6 +397,11 @@ impl<S: Scalar> World<'_, S> {
             .iter()
             .map(|r| self.first_sphere_of(r.start))
             .collect();
+        let slow_runs: &[Range<usize>] = if cycle.multirate() {
+            self.slow_runs.of(&self.bodies[..nb])
+        } else {
+            &[]
+        };
         let mut jobs: heapless::Vec<IntegratePart<'_, S, SUMS>, N> = heapless::Vec::new();
         {
             let mut bodies = &mut self.bodies[..nb];
@@ -443,6 +448,7 @@ impl<S: Scalar> World<'_, S> {
                     first_sphere: sphere_starts[k],
                     spheres: s,
                     sums,
+                    slow_runs,
                     max_disp: S::ZERO,
                     result: Ok(()),
                 });

@@ -48,6 +48,9 @@ pub(crate) struct IntegratePart<'w, S: Scalar, const SUMS: usize> {
     /// The accumulators of these bodies: the world's and each contact part's private arena
     /// (those that touched the range), with the body-id range each covers.
     pub sums: heapless::Vec<(Range<usize>, &'w mut [BodyForce<S>]), SUMS>,
+    /// Runs of consecutive slow bodies of the whole world, body ids in increasing order
+    /// (`crate::step::multirate::SlowRuns`; empty in a single-rate world).
+    pub slow_runs: &'w [Range<usize>],
     /// Largest sphere displacement of the step (L1 norm ≥ Euclidean), mm.
     pub max_disp: S,
     /// The first error, if any.
@@ -66,21 +69,31 @@ impl<S: Scalar, const SUMS: usize> IntegratePart<'_, S, SUMS> {
         };
     }
 
-    /// Within a cycle, a slow body keeps its sums: the contact parts' arenas of body `id`
-    /// are added to its own accumulator and cleared (they must be zero between steps).
-    /// [`Self::take_sums`] keeps its own loop: written as this and a take, it cost the
-    /// DESIGN §8 pour 1.35 % more instructions.
+    /// Within a cycle, slow bodies keep their sums: the contact parts' arenas of bodies
+    /// `ids` are added to their own accumulators and cleared (they must be zero between
+    /// steps). [`Self::take_sums`] keeps its own loop: written as this and a take, it cost
+    /// the DESIGN §8 pour 1.35 % more instructions.
     #[inline(always)]
-    fn keep_sums(&mut self, id: usize) {
+    fn keep_sums(&mut self, ids: Range<usize>) {
         let Some(((_, own), beyond)) = self.sums.split_first_mut() else {
             return;
         };
-        let kept = &mut own[id - self.first_body];
         for (range, arena) in beyond.iter_mut() {
-            if range.contains(&id) {
-                kept.merge(&core::mem::take(&mut arena[id - range.start]));
+            for id in ids.start.max(range.start)..ids.end.min(range.end) {
+                own[id - self.first_body].merge(&core::mem::take(&mut arena[id - range.start]));
             }
         }
+    }
+
+    /// Where the run of slow bodies that holds body `id` ends (clipped to the part), if one
+    /// does; `next` is the first run not yet passed, and moves on with `id`.
+    #[inline(always)]
+    fn slow_run_end(&self, id: usize, next: &mut usize) -> Option<usize> {
+        while self.slow_runs.get(*next).is_some_and(|r| r.end <= id) {
+            *next += 1;
+        }
+        let run = self.slow_runs.get(*next)?;
+        (run.start <= id).then(|| run.end.min(self.first_body + self.bodies.len()))
     }
 
     /// The summed loads of body `id`, with every accumulator of it cleared. The first arena
@@ -107,41 +120,65 @@ impl<S: Scalar, const SUMS: usize> IntegratePart<'_, S, SUMS> {
         cycle: &Cycle<S>,
     ) -> Result<(), StepError> {
         let mut max_disp = S::ZERO;
-        for k in 0..self.bodies.len() {
+        let mut next_run = 0;
+        let mut k = 0;
+        while k < self.bodies.len() {
             let id = self.first_body + k;
-            let (sums, dt) = if MULTIRATE && self.bodies[k].slow {
-                if !cycle.slow_moves {
-                    self.keep_sums(id);
-                    continue;
-                }
-                (cycle_mean(&self.take_sums(id), cycle.stride), cycle.long_dt)
-            } else {
-                (self.take_sums(id), dt)
-            };
-            let b = &mut self.bodies[k];
-            let first = b.first_sphere as usize - self.first_sphere;
-            let spheres = &mut self.spheres[first..first + b.sphere_count as usize];
-            if !b.is_clump {
-                if let Some(m) = move_sphere(b, &sums, dt, g) {
-                    b.velocity = m.velocity;
-                    b.position = m.position;
-                    b.angular_velocity = m.angular_velocity;
-                    b.force = m.force;
-                    b.torque = m.torque;
-                    b.roll_torque = m.roll;
-                    let s = &mut spheres[0];
-                    s.position = m.position;
-                    s.velocity = m.velocity;
-                    s.spin = m.angular_velocity;
-                    max_disp = max_disp.max(m.l1_displacement);
+            if MULTIRATE && !cycle.slow_moves {
+                if let Some(end) = self.slow_run_end(id, &mut next_run) {
+                    self.keep_sums(id..end);
+                    k = end - self.first_body;
                     continue;
                 }
             }
-            let disp = move_body(b, spheres, &sums, dt, g).ok_or(overflow(id))?;
+            let disp = self.move_one::<MULTIRATE>(k, dt, g, cycle)?;
             max_disp = max_disp.max(disp);
+            k += 1;
         }
         self.max_disp = max_disp;
         Ok(())
+    }
+
+    /// Move the part's body `k` by one step (a slow body only at the end of its cycle, by the
+    /// long step; before, it keeps its sums) and return its largest sphere displacement
+    /// (L1, mm; zero for a body that did not move).
+    #[inline(always)]
+    fn move_one<const MULTIRATE: bool>(
+        &mut self,
+        k: usize,
+        dt: S,
+        g: Vec3<S>,
+        cycle: &Cycle<S>,
+    ) -> Result<S, StepError> {
+        let id = self.first_body + k;
+        let (sums, dt) = if MULTIRATE && self.bodies[k].slow {
+            if !cycle.slow_moves {
+                self.keep_sums(id..id + 1);
+                return Ok(S::ZERO);
+            }
+            (cycle_mean(&self.take_sums(id), cycle.stride), cycle.long_dt)
+        } else {
+            (self.take_sums(id), dt)
+        };
+        let b = &mut self.bodies[k];
+        let first = b.first_sphere as usize - self.first_sphere;
+        let spheres = &mut self.spheres[first..first + b.sphere_count as usize];
+        if !b.is_clump {
+            if let Some(m) = move_sphere(b, &sums, dt, g) {
+                b.velocity = m.velocity;
+                b.position = m.position;
+                b.angular_velocity = m.angular_velocity;
+                b.force = m.force;
+                b.torque = m.torque;
+                b.roll_torque = m.roll;
+                let s = &mut spheres[0];
+                s.position = m.position;
+                s.velocity = m.velocity;
+                s.spin = m.angular_velocity;
+                return Ok(m.l1_displacement);
+            }
+        }
+        move_body(b, spheres, &sums, dt, g).ok_or(overflow(id))
     }
 }
 
