@@ -6,7 +6,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 crate=${1:?"scenario-binary.sh: name the crate, host or core"}
-binary=$(cargo test --release --workspace --no-run --message-format=json-render-diagnostics |
+# The selection of test-all.sh's release tests (it says why), so that nothing builds anew.
+binary=$(cargo test --release --workspace --exclude arachis-benches --lib --bins --tests \
+    --no-run --message-format=json-render-diagnostics |
     grep "\"src_path\":\"[^\"]*/$crate/tests/scenarios.rs\"" |
     grep -o '"executable":"[^"]*"' | cut -d'"' -f4)
 [ -x "$binary" ] || { echo "scenario-binary.sh: the $crate scenario binary was not built" >&2; exit 1; }

@@ -33,7 +33,13 @@ slurm_log=$(mktemp)
 (cd host && "$scenarios" slurm_cluster:: >"$slurm_log" 2>&1) &
 slurm_tests=$!
 rest_status=0
-cargo test --release --workspace -- --skip slurm_cluster:: || rest_status=$?
+# Every test target, then the doc tests; not the examples, which hold no test, and not the
+# benches crate, which holds none either (its criterion benchmarks run under `cargo bench`):
+# clippy (`.ci/run`) checks both, and building them here would cost CI the criterion crates
+# and the examples for nothing. scripts/scenario-binary.sh builds the same selection.
+cargo test --release --workspace --exclude arachis-benches --lib --bins --tests \
+    -- --skip slurm_cluster:: || rest_status=$?
+cargo test --release --workspace --exclude arachis-benches --doc || rest_status=$?
 slurm_status=0
 wait "$slurm_tests" || slurm_status=$?
 echo "--- the Slurm tests, run beside the rest ---"
