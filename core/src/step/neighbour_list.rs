@@ -66,7 +66,7 @@ const FAST_SQUARE_REACH_BITS: i32 = 15;
 
 /// Partner-key flag of an entry between two slow bodies ([`crate::step::multirate`]). In a
 /// multi-rate world the list sets it and keeps a slow owner's flagged entries after its
-/// others ([`order_slow_pairs`]), so that at the steps between a cycle's first and the next
+/// others (`order_slow_pairs`), so that at the steps between a cycle's first and the next
 /// the contact scan stops at an owner's first flagged entry: it neither evaluates nor reads
 /// the rest. Free in every key for the same reason as [`LIVE_FLAG`] (sphere ids below 2^29).
 pub const SLOW_PAIR_FLAG: u32 = 0x2000_0000;
@@ -220,7 +220,7 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
 
     /// Flag and order the slow pairs of every slow owner of the live half
     /// ([`order_slow_pairs`]), in a multi-rate world: a checkpoint's words do not hold the
-    /// flag, so a world that read one calls this.
+    /// flag and [`Self::exchange`] clears it, so a world that wrote or read one calls this.
     pub(crate) fn order_live_slow_pairs(&mut self, spheres: &[Sphere<S>]) {
         if !self.slow_pairs_last {
             return;
