@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs every test of the workspace: all crates in a release build (the simulation-heavy
+# Runs every test of the workspace: every crate's tests in a release build (the simulation-heavy
 # scenario tests need optimised code, and nothing is skipped there), the core's unit and
 # scenario tests again in the test profile, with debug assertions and overflow checks on
 # (golden digests must be identical in both profiles, and overflow checks catch a wrapping
@@ -33,12 +33,9 @@ slurm_log=$(mktemp)
 (cd host && "$scenarios" slurm_cluster:: >"$slurm_log" 2>&1) &
 slurm_tests=$!
 rest_status=0
-# Every test target, then the doc tests; not the examples, which hold no test, and not the
-# benches crate, which holds none either (its criterion benchmarks run under `cargo bench`):
-# clippy (`.ci/run`) checks both, and building them here would cost CI the criterion crates
-# and the examples for nothing. scripts/scenario-binary.sh builds the same selection.
-cargo test --release --workspace --exclude arachis-benches --lib --bins --tests \
-    -- --skip slurm_cluster:: || rest_status=$?
+# Every test target, then the doc tests (scripts/release-tests.sh says what is left out).
+source scripts/release-tests.sh
+cargo test "${RELEASE_TESTS[@]}" -- --skip slurm_cluster:: || rest_status=$?
 cargo test --release --workspace --exclude arachis-benches --doc || rest_status=$?
 slurm_status=0
 wait "$slurm_tests" || slurm_status=$?

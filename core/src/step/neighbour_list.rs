@@ -233,11 +233,7 @@ impl<'a, S: Scalar> NeighbourList<'a, S> {
             }
             let range = self.index[offsets.start + i] as usize + base
                 ..self.index[offsets.start + i + 1] as usize + base;
-            let effects = if self.effects.is_empty() {
-                &mut [][..]
-            } else {
-                &mut self.effects[range.clone()]
-            };
+            let effects = self.effects.get_mut(range.clone()).unwrap_or_default();
             order_slow_pairs(&mut self.entries[range], effects, spheres);
         }
     }
@@ -645,12 +641,9 @@ impl<S: Scalar> RebuildPart<'_, S> {
                 }
             }
             if sc.slow_pairs_last && si.slow {
-                let effects = if self.out.effects.is_empty() {
-                    &mut [][..]
-                } else {
-                    &mut self.out.effects[first..self.out.at]
-                };
-                order_slow_pairs(&mut self.out.entries[first..self.out.at], effects, spheres);
+                let owned = first..self.out.at;
+                let effects = self.out.effects.get_mut(owned.clone()).unwrap_or_default();
+                order_slow_pairs(&mut self.out.entries[owned], effects, spheres);
             }
             self.ends[k] = self.out.at as u32;
         }
@@ -708,7 +701,8 @@ impl<S: Scalar> Writer<'_, S> {
     }
 }
 
-/// Flag the entries of one slow owner (and their effect history, if kept: empty or as long)
+/// Flag the entries of one slow owner (and their effect history: as long, or empty when the
+/// world keeps none)
 /// whose partner is a slow sphere with [`SLOW_PAIR_FLAG`], and move them behind its other
 /// entries, each part in its order. A wall is never a slow partner. The order of an owner's
 /// entries changes no fixed-point bit: the loads are summed exactly and the digest hashes the
