@@ -46,6 +46,7 @@ use crate::count_limits::{count, MAX_REPLICATES};
 use crate::field::layout::holes;
 use crate::field::picture::write_field_picture;
 use crate::field::soil::fill_fraction;
+use crate::field::speed_watch::SpeedWatch;
 use crate::field::FieldSpec;
 use crate::harvest::SEED001_FIELD_LOSS_PERCENT;
 use crate::harvester::loss::LossTally;
@@ -154,8 +155,6 @@ fn frame_every(s: &str) -> Result<u64, String> {
 const MAX_CHECKPOINT_MINUTES: u64 = 24 * 60;
 /// Seconds in a minute.
 const SECONDS_PER_MINUTE: u64 = 60;
-/// Steps between updates of the progress bar (a whole number of harvester chunks).
-const PROGRESS_STEPS: u64 = 40 * CHUNK_STEPS;
 
 /// The printed line.
 #[derive(Debug, Serialize)]
@@ -187,6 +186,9 @@ struct FieldLine {
     cpu_seconds: f64,
     threads: usize,
     digest: String,
+    /// The fastest free body of the run and the first runaway, looked at after every chunk
+    /// of [`CHUNK_STEPS`] steps (`crate::field::speed_watch`).
+    speeds: SpeedWatch,
     /// With a harvester: where the pods are so far.
     #[serde(skip_serializing_if = "Option::is_none")]
     harvest: Option<HarvestLine>,
@@ -428,6 +430,10 @@ fn run_one(
         }
         _ => None,
     };
+    let mut speeds = SpeedWatch::new(
+        rig.as_ref()
+            .map_or(0.0, |r| r.layout.fastest_point_m_s(r.travel.speed_m_s)),
+    );
     let steps = match &rig {
         Some(r) if args.pass => r.pass_steps(world.timestep_s(), world.slow_stride()),
         _ => args.steps,
@@ -480,7 +486,8 @@ fn run_one(
     while done < steps {
         // Blocks end on frames; both are whole chunks, so the frames change nothing.
         let to_frame = frames.as_ref().map_or(u64::MAX, |f| f.steps_to_next(done));
-        let n = PROGRESS_STEPS.min(steps - done).min(to_frame);
+        // A chunk at a time: the speed watch looks after each.
+        let n = CHUNK_STEPS.min(steps - done).min(to_frame);
         let stepped = match &mut rig {
             Some(r) => r.advance(&mut world, n),
             None => crate::stepping::run(&mut world, n).map_err(|e| e.to_string()),
@@ -494,12 +501,23 @@ fn run_one(
         })?;
         done += n;
         bar.set_position(done);
+        if let Some(f) = speeds.observe(&world, done) {
+            bar.suspend(|| {
+                eprintln!(
+                    "{label}: warning: body {} moves at {:.1} m/s at step {} (at ({:.3}, {:.3}, {:.3}) m), faster than anything in the field can drive it ({:.1} m/s): its energy came from the numerics, and what it hits is wrong",
+                    f.body, f.speed_m_s, f.step, f.position_m[0], f.position_m[1], f.position_m[2],
+                    speeds.bound_m_s()
+                )
+            });
+        }
         if let Some(f) = &frames {
             if f.due(done) || done == steps {
                 f.take(&world, done)?;
             }
         }
-        if saved.elapsed() >= every && done < steps {
+        // A checkpoint holds a world between the soil's cycles only.
+        let between_cycles = done % u64::from(world.slow_stride()) == 0;
+        if saved.elapsed() >= every && done < steps && between_cycles {
             save(&mut world, rig.as_ref(), done)?;
             saved = Instant::now();
         }
@@ -564,6 +582,7 @@ fn run_one(
         cpu_seconds,
         threads: crate::stepping::run_threads(),
         digest: format!("{:016x}", world.digest()),
+        speeds,
         harvest,
     };
     if let Some(path) = &outputs.vtk {

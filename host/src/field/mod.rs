@@ -24,6 +24,7 @@
 pub mod layout;
 pub mod picture;
 pub mod soil;
+pub mod speed_watch;
 pub mod world;
 
 use std::path::{Path, PathBuf};

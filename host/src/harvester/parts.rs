@@ -274,6 +274,35 @@ impl Layout {
         self.parts.iter().map(|p| p.spheres_m.len()).sum()
     }
 
+    /// The fastest speed of any point of the machine's spheres, m/s: the forward speed, plus
+    /// each part's spin about its centre at its farthest sphere (|ω × d| + |ω|·r, d from
+    /// the centre to the sphere's), plus its shake's peak speed 2πf·A.
+    pub fn fastest_point_m_s(&self, forward_speed_m_s: f64) -> f64 {
+        self.parts
+            .iter()
+            .map(|p| {
+                let w = p.spin_rad_s;
+                let norm = |v: [f64; 3]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+                let turn = p
+                    .spheres_m
+                    .iter()
+                    .map(|c| {
+                        let d = [0, 1, 2].map(|k| c[k] - p.centre_m[k]);
+                        norm([
+                            w[1] * d[2] - w[2] * d[1],
+                            w[2] * d[0] - w[0] * d[2],
+                            w[0] * d[1] - w[1] * d[0],
+                        ])
+                    })
+                    .fold(0.0, f64::max)
+                    + norm(w) * p.radius_m;
+                let shake = std::f64::consts::TAU * p.shake.frequency_hz * p.shake.amplitude_mm
+                    / LENGTH_M_TO_MM;
+                forward_speed_m_s + turn + shake
+            })
+            .fold(0.0, f64::max)
+    }
+
     /// Height of the machine's carrying surface (shovel, then chain) at `x_m`, m; `None`
     /// ahead of the edge or behind the chain's top end.
     pub fn surface_z_m(&self, x_m: f64) -> Option<f64> {
@@ -392,6 +421,20 @@ mod tests {
     /// The shipped machine's counts, worked by hand: 0.25 m of shovel in 10 mm rows is 25
     /// pitches, 26 rows; 0.6 m in 10 mm is 60 pitches, 61 spheres; 0.8 m of chain at 40 mm
     /// is 20 rods of ⌈600/10.5⌉ + 1 = 59 spheres; 0.6 m at 50 mm is 12 pitches, 13 teeth.
+    /// The shipped machine's fastest point is a drum tooth's outer surface: forward speed
+    /// plus ω·(R + r_t), ω = 2π·rpm/60 (by hand: 1.0 + 49.218·0.206 = 11.139 m/s), faster than
+    /// the chain rods (1.0 + 1.02) and the shaken shovel (1.0 + 2πfA).
+    #[test]
+    fn the_fastest_point_is_a_drum_tooth() {
+        let spec = shipped();
+        let layout = Layout::of(&spec);
+        let v = spec.harvester.forward_speed_m_s;
+        let omega = spec.drum.speed_rpm * std::f64::consts::TAU / 60.0;
+        let tip = v + omega * (spec.drum.radius_m + spec.drum.tooth_radius_mm / LENGTH_M_TO_MM);
+        let got = layout.fastest_point_m_s(v);
+        assert!((got - tip).abs() < 1e-9, "{got} against {tip}");
+    }
+
     #[test]
     fn the_shipped_machine_has_its_hand_worked_counts() {
         let layout = Layout::of(&shipped());
