@@ -515,9 +515,7 @@ fn run_one(
                 f.take(&world, done)?;
             }
         }
-        // A checkpoint holds a world between the soil's cycles only.
-        let between_cycles = done % u64::from(world.slow_stride()) == 0;
-        if saved.elapsed() >= every && done < steps && between_cycles {
+        if saved.elapsed() >= every && done < steps {
             save(&mut world, rig.as_ref(), done)?;
             saved = Instant::now();
         }

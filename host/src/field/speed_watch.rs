@@ -23,6 +23,7 @@
 
 use arachis_core::prelude::*;
 use arachis_core::units::LENGTH_M_TO_MM;
+use glam::DVec3;
 use serde::Serialize;
 
 /// The speed a free body reaches in any field without a machine, m/s: a fall of about
@@ -109,10 +110,7 @@ pub fn fastest_free_body<S: Scalar>(world: &World<'_, S>, step: u64) -> Option<F
         .iter()
         .enumerate()
         .filter(|(_, b)| b.inv_mass != S::ZERO)
-        .map(|(i, b)| {
-            let v = b.velocity.to_f64();
-            (i, (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt(), b)
-        })
+        .map(|(i, b)| (i, DVec3::from(b.velocity.to_f64()).length(), b))
         .max_by(|a, b| a.1.total_cmp(&b.1))
         .map(|(i, speed_m_s, b)| Fastest {
             step,

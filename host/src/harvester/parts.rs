@@ -23,6 +23,7 @@
 //! ```
 
 use arachis_core::units::LENGTH_M_TO_MM;
+use glam::DVec3;
 
 use super::{HarvesterSpec, Shake};
 
@@ -281,21 +282,14 @@ impl Layout {
         self.parts
             .iter()
             .map(|p| {
-                let w = p.spin_rad_s;
-                let norm = |v: [f64; 3]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+                let w = DVec3::from(p.spin_rad_s);
+                let centre = DVec3::from(p.centre_m);
                 let turn = p
                     .spheres_m
                     .iter()
-                    .map(|c| {
-                        let d = [0, 1, 2].map(|k| c[k] - p.centre_m[k]);
-                        norm([
-                            w[1] * d[2] - w[2] * d[1],
-                            w[2] * d[0] - w[0] * d[2],
-                            w[0] * d[1] - w[1] * d[0],
-                        ])
-                    })
+                    .map(|&c| w.cross(DVec3::from(c) - centre).length())
                     .fold(0.0, f64::max)
-                    + norm(w) * p.radius_m;
+                    + w.length() * p.radius_m;
                 let shake = std::f64::consts::TAU * p.shake.frequency_hz * p.shake.amplitude_mm
                     / LENGTH_M_TO_MM;
                 forward_speed_m_s + turn + shake
