@@ -42,8 +42,12 @@ const DELTA_RAW: u64 = 1 << (STATE + 3);
 const CONTACT_RADIUS_RAW: i64 = 1 << (STATE + 4);
 /// … effective mass < 2^10 g, …
 const MASS_RAW: i64 = 1 << (STATE + 10);
-/// … time step < 2^-3 ms, …
+/// … time step < 2^-3 ms ([`MAX_TIMESTEP_S`]), …
 const TIMESTEP_RAW: i64 = 1 << (STATE - 3);
+/// The time step below which this kernel takes a world's contacts, s: 2^-3 ms. A world that
+/// steps as long or longer sends every contact to the checked terms (the same law, about
+/// twice the cost of a step; `host/src/field/settle.rs` measured it on a settling bed).
+pub const MAX_TIMESTEP_S: f64 = 1.25e-4;
 /// … clump offsets < 2^5 mm, …
 const OFFSET_RAW: u64 = 1 << (STATE + 5);
 /// … normal and tangential force components < 2^13 N.
@@ -468,6 +472,14 @@ pub fn evaluate_jkr(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_published_time_step_bound_is_the_envelopes() {
+        use crate::num::Fx;
+        use crate::units::TIME_S_TO_MS;
+        let bound_ms = Fx::from_f64(MAX_TIMESTEP_S * TIME_S_TO_MS);
+        assert_eq!(bound_ms.raw(), TIMESTEP_RAW);
+    }
     use crate::contact::fused::evaluate as evaluate_f64;
     use crate::contact::fused::random_contacts::{contact, jkr_pairs, test_pairs, Stream};
     use crate::num::Scalar;
