@@ -36,12 +36,11 @@ const UNDISTURBED_AHEAD_M: f64 = 0.15;
 /// A bare bed 0.4 m long and 0.2 m wide under the shipped machine narrowed to 0.24 m, driven
 /// until the shovel's edge is 0.12 m into the bed.
 ///
-/// The bed starts loose (40 % fill) and settles as the machine runs: on 2026-11-27 its
-/// undisturbed top sank from −10 mm to −33 mm within 0.17 s. So the lift is measured against
-/// the undisturbed bed of the same run, the grains more than [`UNDISTURBED_AHEAD_M`] ahead
-/// of the edge: the soil over the shovel must stand at least one grain diameter higher.
-/// (The first version of this test compared with the bed's height at rest and failed for
-/// that reason.)
+/// The lift is measured against the undisturbed bed of the same run, the grains more than
+/// [`UNDISTURBED_AHEAD_M`] ahead of the edge: the soil over the shovel must stand at least
+/// one grain diameter higher. (The first version of this test compared with the bed's height
+/// at rest and failed: the bed was then laid out loose and its undisturbed top sank from
+/// −10 mm to −33 mm within 0.17 s. It now settles before the run, `tests/field_settle.rs`.)
 #[test]
 fn the_shovel_lifts_the_soil_and_lets_none_through() {
     let mut field_spec = FieldSpec::read(&testdata("field-huayu.toml")).unwrap();
@@ -121,7 +120,8 @@ fn the_shovel_lifts_the_soil_and_lets_none_through() {
 fn on_the_shipped_field_the_pass_lasts_until_the_bed_has_passed_the_collector() {
     let field_spec = FieldSpec::read(&testdata("field-huayu.toml")).unwrap();
     let machine = shipped_machine();
-    let field = field_spec.plant(1).unwrap();
+    // The pass's length depends on the layout alone, not on the settled soil.
+    let field = field_spec.lay_out(1).unwrap();
     let (bodies, spheres) = Rig::extra_storage(&machine);
     let mut arena =
         OwnedStorage::<Fx>::new(field.storage_lengths_with(&field_spec, bodies, spheres));

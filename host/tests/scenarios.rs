@@ -50,6 +50,7 @@ mod experiments_rigs;
 mod export_liggghts;
 mod field;
 mod field_checkpoint;
+mod field_settle;
 mod field_trial;
 mod golden_c5d1f03;
 mod harvest;

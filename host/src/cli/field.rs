@@ -45,6 +45,7 @@ use crate::checkpoint::{self, inputs_hash, Header};
 use crate::count_limits::{count, MAX_REPLICATES};
 use crate::field::layout::holes;
 use crate::field::picture::write_field_picture;
+use crate::field::settle::Settled;
 use crate::field::soil::fill_fraction;
 use crate::field::speed_watch::SpeedWatch;
 use crate::field::FieldSpec;
@@ -174,6 +175,8 @@ struct FieldLine {
     pods_in_bed: usize,
     /// Shallowest and deepest pod centre below the surface, mm.
     pod_depth_mm: [f64; 2],
+    /// The soil's settling around the held plants before the run (`crate::field::settle`).
+    soil_settling: SettlingLine,
     dt_s: f64,
     /// Field steps per step of the soil ([`crate::field::Soil::slow_stride`], as the soil's
     /// stable step allows it).
@@ -192,6 +195,15 @@ struct FieldLine {
     /// With a harvester: where the pods are so far.
     #[serde(skip_serializing_if = "Option::is_none")]
     harvest: Option<HarvestLine>,
+}
+
+/// The soil's settling, as printed.
+#[derive(Debug, Serialize)]
+struct SettlingLine {
+    #[serde(flatten)]
+    settled: Settled,
+    /// Its wall time, s (not in the run's `wall_seconds`).
+    wall_seconds: f64,
 }
 
 /// The printed object of a trial (`--replicates`).
@@ -405,9 +417,22 @@ fn run_one(
     outputs: &Outputs,
     label: &str,
 ) -> anyhow::Result<FieldLine> {
-    let field = spec
-        .plant(seed)
+    let mut field = spec
+        .lay_out(seed)
         .with_context(|| format!("{}: cannot lay out the field", args.file.display()))?;
+    let settle_started = Instant::now();
+    let settle_bar = super::steps_bar(&format!("{label} soil settling"), 0);
+    let settled = field
+        .settle(spec, |done, all| {
+            settle_bar.set_length(all);
+            settle_bar.set_position(done);
+        })
+        .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
+    settle_bar.finish_and_clear();
+    let soil_settling = SettlingLine {
+        settled,
+        wall_seconds: settle_started.elapsed().as_secs_f64(),
+    };
     let (extra_bodies, extra_spheres) = machine.map_or((0, 0), Rig::extra_storage);
     let mut arena =
         OwnedStorage::<Fx>::new(field.storage_lengths_with(spec, extra_bodies, extra_spheres));
@@ -572,6 +597,7 @@ fn run_one(
             -pod_z_mm.iter().copied().fold(f64::MIN, f64::max),
             -pod_z_mm.iter().copied().fold(f64::MAX, f64::min),
         ],
+        soil_settling,
         dt_s: world.timestep_s(),
         soil_stride: world.slow_stride(),
         steps,

@@ -18,6 +18,7 @@ use arachis_core::units::LENGTH_M_TO_MM;
 use rand::{Rng, RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+use super::settle::lattice_above_surface_m;
 use super::soil::{fill_soil, Grain};
 use super::FieldSpec;
 use crate::plant::overlap::SphereGrid;
@@ -62,6 +63,9 @@ pub enum FieldError {
         /// Yaw angles tried over all regrowths.
         tries: usize,
     },
+    /// The soil's settling failed (a step of its world, or the world's set-up).
+    #[error("the soil's settling: {0}")]
+    Settle(String),
 }
 
 /// One plant of the field, moved to its place.
@@ -141,8 +145,18 @@ pub fn holes(spec: &FieldSpec) -> Vec<[f64; 2]> {
 }
 
 impl FieldSpec {
-    /// The field of `seed`: plants in their holes, soil around them.
+    /// The field of `seed`: plants in their holes, soil settled around them
+    /// ([`FieldSpec::lay_out`], then [`Field::settle`] without progress reports).
     pub fn plant(&self, seed: u64) -> Result<Field, FieldError> {
+        let mut field = self.lay_out(seed)?;
+        field.settle(self, |_, _| {}).map_err(FieldError::Settle)?;
+        Ok(field)
+    }
+
+    /// The field of `seed` before its soil settles: plants in their holes, and the loose
+    /// lattice of grains around them, laid [`lattice_above_surface_m`] above the surface
+    /// ([`super::settle`]).
+    pub fn lay_out(&self, seed: u64) -> Result<Field, FieldError> {
         let variety = self.variety.as_ref().ok_or(FieldError::NoVariety)?;
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let f = &self.field;
@@ -210,7 +224,9 @@ impl FieldSpec {
         let margin = self.soil.margin_m;
         let bed_min_m = [-margin, -half_width, -self.soil.depth_m];
         let bed_max_m = [f.ridge_length_m + margin, half_width, 0.0];
-        let grains = fill_soil(&self.soil, bed_min_m, bed_max_m, &plants, &mut rng);
+        let mut lattice_max_m = bed_max_m;
+        lattice_max_m[2] += lattice_above_surface_m(&self.soil);
+        let grains = fill_soil(&self.soil, bed_min_m, lattice_max_m, &plants, &mut rng);
         Ok(Field {
             plants,
             grains,

@@ -7,7 +7,8 @@
 //! [`FieldSpec::plant`] lays the field out from a seed ([`layout`]): one seed always gives the
 //! same field. Each plant is grown from its own seed ([`crate::variety`]) and turned about its
 //! main stem until it touches no plant placed before it; then the soil grains fill the bed
-//! around the pods and stalks ([`soil`]). [`Field::load_into`] puts everything in one core
+//! around the pods and stalks ([`soil`]) and settle there while the plants are held
+//! ([`settle`]). [`Field::load_into`] puts everything in one core
 //! world ([`world`]): contacts between plants, between pods of different plants and with the
 //! soil are on.
 //!
@@ -23,6 +24,7 @@
 
 pub mod layout;
 pub mod picture;
+pub mod settle;
 pub mod soil;
 pub mod speed_watch;
 pub mod world;
@@ -140,6 +142,10 @@ pub struct Soil {
     /// every checkpoint and frame falls between the soil's steps.
     #[serde(default = "single_rate")]
     pub slow_stride: u32,
+    /// Time the soil settles around the held plants before the field's run, s
+    /// ([`settle`]; 0 leaves the loose lattice, trimmed at the surface).
+    #[serde(default = "default_settle_s")]
+    pub settle_s: f64,
     /// The soil's contacts.
     pub contacts: SoilContacts,
 }
@@ -147,6 +153,19 @@ pub struct Soil {
 /// The default [`Soil::slow_stride`]: the soil steps with the plant.
 fn single_rate() -> u32 {
     1
+}
+
+/// The default [`Soil::settle_s`], s. Measured on a one-plant field (9 523 grains laid
+/// 1.5 × the bed's depth high, 0.12 ms steps): the grains' kinetic energy at the end was
+/// 0.019 J after 0.2 s, 0.0017 J after 0.3 s and 0.0020 J after 0.5 s, so the bed has come to
+/// rest by 0.3 s; released into the field's run it then sinks by 0.08 mm in 0.02 s at any of
+/// the three, where the loose lattice sinks by 2.0 mm.
+pub const DEFAULT_SETTLE_S: f64 = 0.3;
+/// Longest settling, s.
+pub const MAX_SETTLE_S: f64 = 10.0;
+
+fn default_settle_s() -> f64 {
+    DEFAULT_SETTLE_S
 }
 
 /// A field file.
@@ -296,6 +315,12 @@ impl FieldSpec {
             bad(
                 &["soil", "jkr_work_of_adhesion_j_m2"],
                 format!("must be ≥ 0 J/m², got {}", s.jkr_work_of_adhesion_j_m2),
+            );
+        }
+        if !(s.settle_s.is_finite() && (0.0..=MAX_SETTLE_S).contains(&s.settle_s)) {
+            bad(
+                &["soil", "settle_s"],
+                format!("must be 0 to {MAX_SETTLE_S} s, got {}", s.settle_s),
             );
         }
         let chunk = CHUNK_STEPS;

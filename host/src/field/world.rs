@@ -93,35 +93,8 @@ impl Field {
     ) -> Result<Loaded, String> {
         let core = |e: &dyn std::fmt::Display| e.to_string();
         let s = &spec.soil;
-        let plant = world.add_material(STALK_MATERIAL).map_err(|e| core(&e))?;
-        let pod = world.add_material(POD_MATERIAL).map_err(|e| core(&e))?;
-        let soil = world
-            .add_material(MaterialSpec {
-                youngs_modulus_pa: s.youngs_modulus_pa,
-                poisson: s.poisson,
-                density_kg_m3: s.density_kg_m3,
-            })
-            .map_err(|e| core(&e))?;
-        let pair = |c: ContactValues| {
-            PairSpec::hertz_mindlin(c.restitution, c.friction, c.rolling_friction)
-        };
-        let cohesion = soil_cohesion(spec);
-        for (a, b, spec, sticky) in [
-            (plant, plant, STALK_CONTACT, false),
-            (plant, pod, POD_CONTACT, false),
-            (pod, pod, POD_CONTACT, false),
-            (soil, soil, pair(s.contacts.soil), true),
-            (soil, pod, pair(s.contacts.pod), true),
-            (soil, plant, pair(s.contacts.plant), true),
-        ] {
-            world.set_pair(a, b, spec).map_err(|e| core(&e))?;
-            if sticky && cohesion != EffectSpec::default() {
-                world
-                    .set_pair_effects(a, b, cohesion)
-                    .map_err(|e| core(&e))?;
-            }
-        }
-        world.set_gravity_m_s2(GRAVITY_M_S2).map_err(|e| core(&e))?;
+        let materials = add_field_materials(spec, world, STALK_MATERIAL, POD_MATERIAL)?;
+        let FieldMaterials { plant, pod, soil } = materials;
         let mut roots = Vec::with_capacity(self.plants.len());
         let mut pods = Vec::new();
         // The plants of one variety share their bond sets: the first plant's serve them all.
@@ -155,15 +128,7 @@ impl Field {
                     .map_err(|e| core(&e))
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let floor = world
-            .add_wall(WallSpec::fixed(
-                WallGeometry::Plane {
-                    point_m: self.bed_min_m,
-                    normal: [0.0, 0.0, 1.0],
-                },
-                soil,
-            ))
-            .map_err(|e| core(&e))?;
+        let floor = add_floor(world, self.bed_min_m, soil)?;
         set_safe_timestep(world)?;
         for &g in &grains {
             world.set_body_slow(g, true).map_err(|e| core(&e))?;
@@ -176,9 +141,69 @@ impl Field {
             pods,
             grains,
             floor,
-            materials: FieldMaterials { plant, pod, soil },
+            materials,
         })
     }
+}
+
+/// Adds the field's materials to `world`: stems, stalks and leaves of `plant`, pods of `pod`
+/// (the field's own are [`STALK_MATERIAL`] and [`POD_MATERIAL`]; the soil's settling holds
+/// them with raised densities, [`super::settle`]) and the field file's soil; sets every pair
+/// (the soil's with their JKR cohesion) and gravity.
+pub fn add_field_materials<S: Scalar>(
+    spec: &FieldSpec,
+    world: &mut World<'_, S>,
+    plant: MaterialSpec,
+    pod: MaterialSpec,
+) -> Result<FieldMaterials, String> {
+    let core = |e: &dyn std::fmt::Display| e.to_string();
+    let s = &spec.soil;
+    let plant = world.add_material(plant).map_err(|e| core(&e))?;
+    let pod = world.add_material(pod).map_err(|e| core(&e))?;
+    let soil = world
+        .add_material(MaterialSpec {
+            youngs_modulus_pa: s.youngs_modulus_pa,
+            poisson: s.poisson,
+            density_kg_m3: s.density_kg_m3,
+        })
+        .map_err(|e| core(&e))?;
+    let pair =
+        |c: ContactValues| PairSpec::hertz_mindlin(c.restitution, c.friction, c.rolling_friction);
+    let cohesion = soil_cohesion(spec);
+    for (a, b, spec, sticky) in [
+        (plant, plant, STALK_CONTACT, false),
+        (plant, pod, POD_CONTACT, false),
+        (pod, pod, POD_CONTACT, false),
+        (soil, soil, pair(s.contacts.soil), true),
+        (soil, pod, pair(s.contacts.pod), true),
+        (soil, plant, pair(s.contacts.plant), true),
+    ] {
+        world.set_pair(a, b, spec).map_err(|e| core(&e))?;
+        if sticky && cohesion != EffectSpec::default() {
+            world
+                .set_pair_effects(a, b, cohesion)
+                .map_err(|e| core(&e))?;
+        }
+    }
+    world.set_gravity_m_s2(GRAVITY_M_S2).map_err(|e| core(&e))?;
+    Ok(FieldMaterials { plant, pod, soil })
+}
+
+/// Adds the bed's floor: a plane of `soil` through `bed_min_m` (the subsoil).
+pub fn add_floor<S: Scalar>(
+    world: &mut World<'_, S>,
+    bed_min_m: [f64; 3],
+    soil: MaterialId,
+) -> Result<WallId, String> {
+    world
+        .add_wall(WallSpec::fixed(
+            WallGeometry::Plane {
+                point_m: bed_min_m,
+                normal: [0.0, 0.0, 1.0],
+            },
+            soil,
+        ))
+        .map_err(|e| e.to_string())
 }
 
 /// Sets `world`'s time step to [`TIMESTEP_SAFETY`] × the smaller of its contact bound
@@ -201,7 +226,7 @@ fn soil_stride<S: Scalar>(wanted: u32, world: &World<'_, S>) -> u32 {
 }
 
 /// The effects of every soil pair: JKR cohesion of the field file's work of adhesion.
-fn soil_cohesion(spec: &FieldSpec) -> EffectSpec {
+pub fn soil_cohesion(spec: &FieldSpec) -> EffectSpec {
     EffectSpec {
         jkr_work_of_adhesion_j_m2: spec.soil.jkr_work_of_adhesion_j_m2,
         ..EffectSpec::default()

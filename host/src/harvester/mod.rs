@@ -179,8 +179,8 @@ pub const MAX_ANGLE_DEG: f64 = 80.0;
 pub const MAX_DRUM_RPM: f64 = 5000.0;
 /// Most tooth rows accepted.
 pub const MAX_DRUM_ROWS: usize = 64;
-/// Longest settling time accepted, s.
-pub const MAX_SETTLE_S: f64 = 10.0;
+/// Longest settling time accepted, s (the field's bound for its soil's settling).
+pub use crate::field::MAX_SETTLE_S;
 /// Highest shake frequency accepted, Hz.
 pub const MAX_SHAKE_HZ: f64 = 200.0;
 
