@@ -77,6 +77,10 @@ fn a_stopped_run_goes_on_to_the_bits_of_one_never_stopped() {
     );
     assert_eq!(second["digest"], whole["digest"], "resumed run");
     assert_eq!(second["harvest"], whole["harvest"]);
+    // The bonds broken count from the field's bonds, so a resumed run counts them as one
+    // never stopped: none here, 2 000 steps in with the machine still before the bed.
+    assert_eq!(second["bonds_broken"], whole["bonds_broken"]);
+    assert_eq!(whole["bonds_broken"].as_u64(), Some(0));
     let wall = |v: &Value| v["wall_seconds"].as_f64().unwrap();
     assert!(
         wall(&second) >= wall(&first),

@@ -167,6 +167,8 @@ struct FieldLine {
     grains: usize,
     spheres: usize,
     bonds: usize,
+    /// Bonds broken by the end of the steps (pod–stalk junctions, stalks, stems, leaves).
+    bonds_broken: usize,
     /// Fraction of the bed the grains fill.
     soil_fill_fraction: f64,
     bed_min_m: [f64; 3],
@@ -589,6 +591,7 @@ fn run_one(
         grains: field.grains.len(),
         spheres: field.spheres(),
         bonds: field.bond_count(),
+        bonds_broken: field.bond_count() - world.bonds().bonds().len(),
         soil_fill_fraction: fill_fraction(&field.grains, field.bed_min_m, field.bed_max_m),
         bed_min_m: field.bed_min_m,
         bed_max_m: field.bed_max_m,
