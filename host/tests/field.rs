@@ -20,7 +20,7 @@ use arachis::field::{Field, FieldSpec};
 use arachis::plant::overlap::SphereGrid;
 use arachis_core::prelude::*;
 
-use crate::cli_support::{arachis, assert_refused, REPO_ROOT};
+use crate::cli_support::{arachis, assert_refused, small_field_files, REPO_ROOT};
 
 /// Standard gravity used by the field's world, m/s².
 const G_M_S2: f64 = 9.81;
@@ -261,10 +261,13 @@ fn bad_field_input_exits_2_naming_file_line_and_key_and_writes_nothing() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains(&format!(":{line}:")), "line {line}: {err}");
     // A run that would end within a cycle of the soil's steps (its last checkpoint could not
-    // be written) is refused before any step.
+    // be written) is refused before any step. The world's stride is known once the settled
+    // field is loaded: the one-plant cut of the shipped field (`small_field_files`, the same
+    // stride of 10) settles in a second where the whole field takes about a minute.
+    let (small, _) = small_field_files(dir.path());
     let out = arachis(&[
         "field",
-        shipped_path().to_str().unwrap(),
+        small.to_str().unwrap(),
         "--steps",
         "45",
         "--vtk",
