@@ -234,6 +234,7 @@ fn bad_field_input_exits_2_naming_file_line_and_key_and_writes_nothing() {
             "no-such-variety.toml",
         ),
         ("slow_stride = 10", "slow_stride = 3", "soil.slow_stride"),
+        ("settle_s = 0.3", "settle_s = -1.0", "soil.settle_s"),
     ];
     for (from, to, named) in cases {
         assert!(text.contains(from), "{from}");
