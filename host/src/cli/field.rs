@@ -429,7 +429,7 @@ fn run_one(
             settle_bar.set_length(all);
             settle_bar.set_position(done);
         })
-        .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
+        .map_err(|e| anyhow::anyhow!("{}: the soil's settling: {e}", args.file.display()))?;
     settle_bar.finish_and_clear();
     let soil_settling = SettlingLine {
         settled,

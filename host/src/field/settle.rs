@@ -52,7 +52,9 @@ use arachis_core::scenario::pull_off::{POD_MATERIAL, STALK_MATERIAL};
 use arachis_core::timestep::rayleigh_time_s;
 use arachis_core::units::LENGTH_M_TO_MM;
 
-use super::world::{add_field_materials, add_floor, soil_cohesion, TIMESTEP_SAFETY};
+use super::world::{
+    add_field_materials, add_floor, add_soil_plane, storage_lengths_for, TIMESTEP_SAFETY,
+};
 use super::{Field, FieldSpec, Soil};
 use crate::arena::OwnedStorage;
 use crate::plant::topology::Kind;
@@ -154,13 +156,7 @@ impl Field {
             .filter(within_walls)
             .collect();
         let bodies = obstacles.len() + laid;
-        let lengths = StorageLengths::for_spheres(bodies.max(1), bodies.max(1));
-        let lengths = if soil_cohesion(spec).needs_history() {
-            lengths.with_effects()
-        } else {
-            lengths
-        };
-        let mut arena = OwnedStorage::<Fx>::new(lengths);
+        let mut arena = OwnedStorage::<Fx>::new(storage_lengths_for(spec, bodies, bodies));
         let mut world = World::new(arena.storage()).map_err(|e| core(&e))?;
         let s = &spec.soil;
         let grain_rayleigh_s = self
@@ -210,12 +206,8 @@ impl Field {
         let mut done = 0;
         while done < steps {
             let n = SETTLE_CHUNK_STEPS.min(steps - done);
-            crate::stepping::run(&mut world, n).map_err(|e| {
-                format!(
-                    "the soil's settling failed at t = {} s: {e}",
-                    world.time_s()
-                )
-            })?;
+            crate::stepping::run(&mut world, n)
+                .map_err(|e| format!("a step at t = {} s failed: {e}", world.time_s()))?;
             done += n;
             progress(done, steps);
         }
@@ -269,12 +261,7 @@ fn add_side_walls<S: Scalar>(
         for (point_m, inward) in [(bed_min_m, 1.0), (bed_max_m, -1.0)] {
             let mut normal = [0.0; 3];
             normal[axis] = inward;
-            world
-                .add_wall(WallSpec::fixed(
-                    WallGeometry::Plane { point_m, normal },
-                    soil,
-                ))
-                .map_err(|e| e.to_string())?;
+            add_soil_plane(world, point_m, normal, soil)?;
         }
     }
     Ok(())

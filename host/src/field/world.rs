@@ -71,12 +71,7 @@ impl Field {
                 .sum::<usize>()
             + self.grains.len();
         let spheres = self.spheres() + extra_spheres;
-        let lengths = StorageLengths::for_spheres(bodies.max(1), spheres.max(1));
-        if soil_cohesion(spec).needs_history() {
-            lengths.with_effects()
-        } else {
-            lengths
-        }
+        storage_lengths_for(spec, bodies, spheres)
     }
 
     /// Bonds of every plant.
@@ -189,21 +184,39 @@ pub fn add_field_materials<S: Scalar>(
     Ok(FieldMaterials { plant, pod, soil })
 }
 
+/// Storage for `bodies` bodies of `spheres` spheres in a world of `spec`'s soil, with the
+/// effect history its JKR cohesion keeps.
+pub fn storage_lengths_for(spec: &FieldSpec, bodies: usize, spheres: usize) -> StorageLengths {
+    let lengths = StorageLengths::for_spheres(bodies.max(1), spheres.max(1));
+    if soil_cohesion(spec).needs_history() {
+        lengths.with_effects()
+    } else {
+        lengths
+    }
+}
+
+/// Adds a fixed plane of `soil` through `point_m` facing along `normal` (a unit vector).
+pub fn add_soil_plane<S: Scalar>(
+    world: &mut World<'_, S>,
+    point_m: [f64; 3],
+    normal: [f64; 3],
+    soil: MaterialId,
+) -> Result<WallId, String> {
+    world
+        .add_wall(WallSpec::fixed(
+            WallGeometry::Plane { point_m, normal },
+            soil,
+        ))
+        .map_err(|e| e.to_string())
+}
+
 /// Adds the bed's floor: a plane of `soil` through `bed_min_m` (the subsoil).
 pub fn add_floor<S: Scalar>(
     world: &mut World<'_, S>,
     bed_min_m: [f64; 3],
     soil: MaterialId,
 ) -> Result<WallId, String> {
-    world
-        .add_wall(WallSpec::fixed(
-            WallGeometry::Plane {
-                point_m: bed_min_m,
-                normal: [0.0, 0.0, 1.0],
-            },
-            soil,
-        ))
-        .map_err(|e| e.to_string())
+    add_soil_plane(world, bed_min_m, [0.0, 0.0, 1.0], soil)
 }
 
 /// Sets `world`'s time step to [`TIMESTEP_SAFETY`] × the smaller of its contact bound
@@ -226,7 +239,7 @@ fn soil_stride<S: Scalar>(wanted: u32, world: &World<'_, S>) -> u32 {
 }
 
 /// The effects of every soil pair: JKR cohesion of the field file's work of adhesion.
-pub fn soil_cohesion(spec: &FieldSpec) -> EffectSpec {
+fn soil_cohesion(spec: &FieldSpec) -> EffectSpec {
     EffectSpec {
         jkr_work_of_adhesion_j_m2: spec.soil.jkr_work_of_adhesion_j_m2,
         ..EffectSpec::default()
