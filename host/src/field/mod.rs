@@ -23,6 +23,7 @@
 //! ([`FieldErrors`], positioned as a study file's errors are).
 
 pub mod layout;
+pub mod peg;
 pub mod picture;
 pub mod settle;
 pub mod soil;

@@ -399,6 +399,63 @@ impl PlantModel {
         self.sets.keys().nth(tag as usize).copied()
     }
 
+    /// Adds pod `body` (an index into [`PlantModel::bodies`]) to `world` as one clump of
+    /// `material`, at rest: of `mass_kg` when given (its moments scaled with it), else of the
+    /// material's density.
+    pub fn add_pod<S: Scalar>(
+        &self,
+        world: &mut World<'_, S>,
+        body: usize,
+        material: MaterialId,
+        mass_kg: Option<f64>,
+    ) -> Result<BodyId, PlantError> {
+        let spheres = self.pod_spheres(body, material);
+        let spec = ClumpSpec {
+            spheres: &spheres,
+            velocity_m_s: [0.0; 3],
+            angular_velocity_rad_s: [0.0; 3],
+        };
+        match mass_kg {
+            None => world.add_clump(&spec),
+            Some(kg) => {
+                scaled_mass(&spheres, kg).and_then(|mass| world.add_clump_with_mass(&spec, &mass))
+            }
+        }
+        .map_err(|e| PlantError::Core(e.to_string()))
+    }
+
+    /// The mass of pod `body`, kg: the variety's pod mass when the topology states one, else
+    /// the volume of its spheres' union at `density_kg_m3`.
+    pub fn pod_mass_or(&self, body: usize, density_kg_m3: f64) -> Result<f64, PlantError> {
+        if let Some(kg) = self.pod_mass_kg {
+            return Ok(kg);
+        }
+        let union: Vec<MassSphere> = self.bodies[body]
+            .spheres
+            .iter()
+            .map(|&i| MassSphere {
+                center_m: self.spheres[i].centre_m,
+                radius_m: self.spheres[i].radius_m,
+                density_kg_m3,
+            })
+            .collect();
+        clump_mass_properties(&union, DEFAULT_MASS_GRID)
+            .map(|props| props.mass_kg)
+            .map_err(|e| PlantError::Core(e.to_string()))
+    }
+
+    fn pod_spheres(&self, body: usize, material: MaterialId) -> Vec<ClumpSphere> {
+        self.bodies[body]
+            .spheres
+            .iter()
+            .map(|&i| ClumpSphere {
+                center_m: self.spheres[i].centre_m,
+                radius_m: self.spheres[i].radius_m,
+                material,
+            })
+            .collect()
+    }
+
     /// Add the plant to `world` (stems, stalks and leaves of `plant_material`, pods of
     /// `pod_material`): spheres, pod clumps, bond sets and bonds. The world needs bond storage
     /// for [`PlantModel::bonds`]. Returns the body id of the stem root (the caller may clamp
@@ -448,28 +505,9 @@ impl PlantModel {
         }
         let first_sphere = world.spheres().len();
         let mut root = None;
-        for b in &self.bodies {
+        for (i, b) in self.bodies.iter().enumerate() {
             let id = if b.kind == Kind::Pod {
-                let spheres: Vec<ClumpSphere> = b
-                    .spheres
-                    .iter()
-                    .map(|&i| ClumpSphere {
-                        center_m: self.spheres[i].centre_m,
-                        radius_m: self.spheres[i].radius_m,
-                        material: pod_material,
-                    })
-                    .collect();
-                let spec = ClumpSpec {
-                    spheres: &spheres,
-                    velocity_m_s: [0.0; 3],
-                    angular_velocity_rad_s: [0.0; 3],
-                };
-                match self.pod_mass_kg {
-                    None => world.add_clump(&spec),
-                    Some(kg) => scaled_mass(&spheres, kg)
-                        .and_then(|mass| world.add_clump_with_mass(&spec, &mass)),
-                }
-                .map_err(|e| core(&e))?
+                self.add_pod(world, i, pod_material, self.pod_mass_kg)?
             } else {
                 let s = &self.spheres[b.spheres[0]];
                 world
