@@ -368,19 +368,24 @@ pub(crate) fn chain_spheres(length_mm: f64, diameter_mm: f64) -> usize {
 /// integrated at a reference density ([`clump_mass_properties`]) and its mass and moments
 /// scaled by one factor, so the centre of mass and principal axes are the union's own.
 fn scaled_mass(spheres: &[ClumpSphere], mass_kg: f64) -> Result<MassProperties, SetupError> {
+    let mut props = union_mass(spheres, REFERENCE_DENSITY_KG_M3)?;
+    let k = mass_kg / props.mass_kg;
+    props.mass_kg = mass_kg;
+    props.principal_inertia_kg_m2 = props.principal_inertia_kg_m2.map(|i| i * k);
+    Ok(props)
+}
+
+/// Mass properties of the union of `spheres` at `density_kg_m3`.
+fn union_mass(spheres: &[ClumpSphere], density_kg_m3: f64) -> Result<MassProperties, SetupError> {
     let union: Vec<MassSphere> = spheres
         .iter()
         .map(|s| MassSphere {
             center_m: s.center_m,
             radius_m: s.radius_m,
-            density_kg_m3: REFERENCE_DENSITY_KG_M3,
+            density_kg_m3,
         })
         .collect();
-    let mut props = clump_mass_properties(&union, DEFAULT_MASS_GRID)?;
-    let k = mass_kg / props.mass_kg;
-    props.mass_kg = mass_kg;
-    props.principal_inertia_kg_m2 = props.principal_inertia_kg_m2.map(|i| i * k);
-    Ok(props)
+    clump_mass_properties(&union, DEFAULT_MASS_GRID)
 }
 
 impl PlantModel {
@@ -430,16 +435,8 @@ impl PlantModel {
         if let Some(kg) = self.pod_mass_kg {
             return Ok(kg);
         }
-        let union: Vec<MassSphere> = self.bodies[body]
-            .spheres
-            .iter()
-            .map(|&i| MassSphere {
-                center_m: self.spheres[i].centre_m,
-                radius_m: self.spheres[i].radius_m,
-                density_kg_m3,
-            })
-            .collect();
-        clump_mass_properties(&union, DEFAULT_MASS_GRID)
+        // The spheres' material plays no part in their union's volume.
+        union_mass(&self.pod_spheres(body, MaterialId(0)), density_kg_m3)
             .map(|props| props.mass_kg)
             .map_err(|e| PlantError::Core(e.to_string()))
     }
