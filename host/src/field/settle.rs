@@ -347,12 +347,14 @@ impl Field {
             }
             // A peg sphere in the world stays where the grains settled around it, the rest
             // (above the soil) takes its share of the pod's fall.
-            for (k, &i) in p.peg.iter().flat_map(|peg| peg.chain.iter().enumerate()) {
-                let share = p.peg.as_ref().map_or(0.0, |peg| peg.share(k));
+            let Some(peg) = &p.peg else { continue };
+            for (k, &i) in peg.chain.iter().enumerate() {
                 let c = &mut model.spheres[i].centre_m;
                 *c = match held.get(&(p.plant, i)) {
                     Some(&id) => world.body(id).position.to_f64().map(|x| x / LENGTH_M_TO_MM),
-                    None => std::array::from_fn(|d| c[d] + share * fall_mm[d] / LENGTH_M_TO_MM),
+                    None => {
+                        std::array::from_fn(|d| c[d] + peg.share(k) * fall_mm[d] / LENGTH_M_TO_MM)
+                    }
                 };
             }
         }
