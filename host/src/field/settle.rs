@@ -145,13 +145,12 @@ struct Obstacle {
 }
 
 /// A pod in the settling world: its plant, its body in the plant's model and in the world,
-/// and its peg with where the peg's bonded pod sphere was held, mm.
+/// and its peg. The plant's model keeps where the pod was held until the settling ends.
 struct SettlingPod {
     plant: usize,
     body: usize,
     id: BodyId,
     peg: Option<Peg>,
-    held_tip_mm: [f64; 3],
 }
 
 impl Field {
@@ -270,16 +269,11 @@ impl Field {
                 .and_then(|kg| model.add_pod(&mut world, body, materials.pod, Some(kg)))
                 .map_err(|e| core(&e))?;
             world.set_body_kinematic(id).map_err(|e| core(&e))?;
-            let peg = Peg::of(model, body);
-            let held_tip_mm = peg.as_ref().map_or([0.0; 3], |peg| {
-                model.spheres[peg.tip].centre_m.map(|x| x * LENGTH_M_TO_MM)
-            });
             pods.push(SettlingPod {
                 plant,
                 body,
                 id,
-                peg,
-                held_tip_mm,
+                peg: Peg::of(model, body),
             });
         }
         let grains = self
@@ -392,8 +386,8 @@ impl Field {
     }
 }
 
-/// How far pod `p`'s sphere bonded to its peg has moved since it was held, mm (zero for a
-/// pod without a peg).
+/// How far pod `p`'s sphere bonded to its peg has moved from where `model` (not yet updated)
+/// holds it, mm (zero for a pod without a peg).
 fn tip_fall_mm(world: &World<'_, Fx>, p: &SettlingPod, model: &PlantModel) -> [f64; 3] {
     let Some(peg) = &p.peg else {
         return [0.0; 3];
@@ -405,7 +399,8 @@ fn tip_fall_mm(world: &World<'_, Fx>, p: &SettlingPod, model: &PlantModel) -> [f
         .expect("a peg's tip is a sphere of its pod");
     let first = world.body(p.id).first_sphere as usize;
     let now = world.spheres()[first + slot].position.to_f64();
-    std::array::from_fn(|k| now[k] - p.held_tip_mm[k])
+    let held_mm = model.spheres[peg.tip].centre_m.map(|x| x * LENGTH_M_TO_MM);
+    std::array::from_fn(|k| now[k] - held_mm[k])
 }
 
 /// Sets the velocities of pod `p`'s held peg spheres (those in the world, `held` by plant and
