@@ -69,32 +69,8 @@
 //! assert!((load.force.z - hertz).abs() < 1e-12);
 //! ```
 
-/// `[e(0), e(1), e(2)]` for an expression `e` in the component index: `each3!(|k| e)`.
-/// A macro, not a function taking a closure: LLVM kept several such closures out of line
-/// in the contact loop (13 call sites), and every call spilled the caller-saved registers
-/// of the whole scan around it.
-macro_rules! each3 {
-    (|$k:ident| $e:expr) => {
-        [
-            {
-                let $k = 0usize;
-                $e
-            },
-            {
-                let $k = 1usize;
-                $e
-            },
-            {
-                let $k = 2usize;
-                $e
-            },
-        ]
-    };
-}
-
 pub mod fixed;
 pub mod jkr;
-pub mod narrow;
 #[cfg(test)]
 pub(crate) mod random_contacts;
 
@@ -317,11 +293,7 @@ pub fn evaluate_fast_jkr<T: Envelope>(
     let to = |x: T| FxFast::from_raw(x.to_bits() as i64);
     let back = |x: FxFast| T::from_bits(x.raw() as u64);
     let (mut d, mut root) = (delta.map(to), to(*jkr_root));
-    let load = if cfg!(feature = "narrow-kernel") && !p.jkr {
-        narrow::evaluate(&c.map(to), &p.map(to), &mut d)?
-    } else {
-        fixed::evaluate_jkr(&c.map(to), &p.map(to), &mut d, &mut root)?
-    };
+    let load = fixed::evaluate_jkr(&c.map(to), &p.map(to), &mut d, &mut root)?;
     *delta = d.map(back);
     *jkr_root = back(root);
     Some(load.map(back))

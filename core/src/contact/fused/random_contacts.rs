@@ -3,7 +3,7 @@
 //! law on the same kind of contacts (spheres and walls, single and clump spheres, soft and
 //! stiff pairs), quantised to Q32.32 so that every kernel sees the same inputs.
 
-use super::{evaluate as evaluate_f64, FusedContact, FusedLoad, FusedPair, Geometry};
+use super::{FusedContact, FusedPair, Geometry};
 use crate::contact::CohesionJkr;
 use crate::material::MaterialSpec;
 use crate::num::{FxFast, Scalar, Vec3};
@@ -166,110 +166,4 @@ pub(crate) fn placed(
         }
     };
     (geometry, n)
-}
-
-/// A Q32.32 kernel under test: the fused law on raw contacts, `None` outside its envelope.
-pub(crate) type Kernel =
-    fn(&FusedContact<FxFast>, &FusedPair<FxFast>, &mut Vec3<FxFast>) -> Option<FusedLoad<FxFast>>;
-
-/// What a kernel's own formats add to the shared budget of [`agreement`] for one contact:
-/// on the force (N), the torques (N·mm), the rolling torques (N·mm) and the history (mm).
-pub(crate) struct Extra {
-    pub(crate) force: f64,
-    pub(crate) torque: f64,
-    pub(crate) roll: f64,
-    pub(crate) history: f64,
-}
-
-/// Absolute part of the tolerance on forces (N) and history (mm): a dozen Q32.32 units of
-/// rounding in a chain of products.
-pub(crate) const FORCE_ABS: f64 = 3e-9;
-/// One unit of a Q.32 force, N.
-pub(crate) const FORCE_UNIT_N: f64 = 2.33e-10;
-/// The longest lever of the random contacts (sphere radius plus clump offset), mm.
-pub(crate) const LEVER_MM: f64 = 24.0;
-/// The same on torques (N·mm): the force's rounding times the longest lever.
-pub(crate) const TORQUE_ABS: f64 = LEVER_MM * FORCE_ABS;
-/// The Q32.32 overlap is rounded (to within a unit, 2^-32 mm, with the distance's own
-/// rounding) in both this kernel and the checked terms, where the f64 law has it
-/// exact: an error of the fixed-point format, not of the kernel.
-pub(crate) const OVERLAP_ROUNDING_MM: f64 = 2.0 * 2.33e-10;
-/// The Q32.32 history is rounded in every step's projection and increment (up to eight units
-/// of 2^-32 mm) in both this kernel and the checked terms.
-pub(crate) const HISTORY_ROUNDING_MM: f64 = 8.0 * 2.33e-10;
-/// Relative tolerance: the kernel's own error budget (module docs), a few 1e-7, with
-/// margin.
-pub(crate) const RELATIVE: f64 = 2e-6;
-
-/// A kernel against the f64 law on 200 000 random contacts of `pairs` (spheres and walls,
-/// single and clump spheres, soft and stiff pairs): every force, torque, rolling torque and
-/// new history component agrees within [`RELATIVE`] of the largest component of its vector,
-/// plus what the Q.32 rounding of the overlap and the history ([`OVERLAP_ROUNDING_MM`],
-/// [`HISTORY_ROUNDING_MM`]) moves it by, plus [`FORCE_ABS`] or [`TORQUE_ABS`], plus the
-/// kernel's own `extra`. Returns how many contacts lay inside the kernel's envelope.
-pub(crate) fn agreement(
-    pairs: &[(FusedPair<f64>, bool); 3],
-    seed: u64,
-    kernel: Kernel,
-    extra: impl Fn(&FusedPair<f64>, &FusedContact<f64>, f64, &FusedLoad<f64>) -> Extra,
-) -> usize {
-    let mut s = Stream(seed);
-    let mut inside = 0;
-    for k in 0..200_000 {
-        let (p, stiff) = pairs[k % 3];
-        let (c, delta0) = contact(&mut s, k % 4 == 0, k % 5 == 0, stiff);
-        let mut d_ref = delta0;
-        let Some(want) = evaluate_f64(&c, &p, &mut d_ref) else {
-            continue;
-        };
-        let to = |x: f64| FxFast::from_f64(x);
-        let mut d_fix = delta0.map(to);
-        let Some(got) = kernel(&c.map(to), &p.map(to), &mut d_fix) else {
-            continue;
-        };
-        inside += 1;
-        // Loads scale at most as α^1.5 (Hertz), so the Q.32 overlap's rounding moves them
-        // by at most 1.5·δα/α of themselves.
-        let alpha = match c.geometry {
-            Geometry::Spheres { d, r_j, .. } => c.r_i + r_j - d.norm(),
-            Geometry::Wall { overlap, .. } => overlap,
-        };
-        let rel = RELATIVE + 1.5 * OVERLAP_ROUNDING_MM / alpha;
-        // The Q.32 history's rounding times the tangential stiffness 8G*·a.
-        let st = p.eight_g_star * libm::sqrt(c.r_star * alpha);
-        let history_abs = st * HISTORY_ROUNDING_MM;
-        let more = extra(&p, &c, alpha, &want);
-        let (force_abs, torque_abs) = (
-            FORCE_ABS + history_abs + more.force,
-            TORQUE_ABS + LEVER_MM * history_abs + more.torque,
-        );
-        let check = |name: &str, g: Vec3<FxFast>, w: Vec3<f64>, abs: f64| {
-            let scale = w.x.abs().max(w.y.abs()).max(w.z.abs());
-            let err = (g.map(|x| x.to_f64()) - w).map(|x| x.abs());
-            let e = err.x.max(err.y).max(err.z);
-            let tol = rel * scale + abs;
-            assert!(
-                e <= tol,
-                "{name} off by {e:e} (tolerance {tol:e}) in case {k}: {g:?} vs {w:?}; {c:?}; history {delta0:?}; α {alpha:e}"
-            );
-        };
-        let roll = |g: FxFast, w: f64| g.to_f64() - w;
-        check("force", got.force, want.force, force_abs);
-        check("torque i", got.torque_i, want.torque_i, torque_abs);
-        check("torque j", got.torque_j, want.torque_j, torque_abs);
-        // A sliding contact's history is μs·Fn/St: the Q.32 limit's rounding over St.
-        check(
-            "history",
-            d_fix,
-            d_ref,
-            FORCE_ABS + 2.0 * FORCE_UNIT_N / st + more.history,
-        );
-        for (g, w) in [(got.roll_i, want.roll_i), (got.roll_j, want.roll_j)] {
-            assert!(
-                roll(g, w).abs() <= rel * w.abs() + TORQUE_ABS + more.roll,
-                "rolling off in case {k}: {g:?} vs {w:e}; {c:?}"
-            );
-        }
-    }
-    inside
 }
