@@ -24,6 +24,7 @@
 // bench needs 1.89 to compile (the core and the host do not use them).
 #![allow(clippy::incompatible_msrv)]
 
+use arachis_core::contact::fused::fixed::{dot_wide, mul_sub_wide, mul_wide};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::arch::x86_64::*;
 use std::hint::black_box;
@@ -65,24 +66,7 @@ fn q(x: f64) -> i64 {
     (x * 4294967296.0).round() as i64
 }
 
-// ---- Scalar references: the kernel's 128-bit arithmetic. ----
-
-/// a·b rounded and shifted right by s.
-fn mul_wide(a: i64, b: i64, s: u32) -> i64 {
-    ((a as i128 * b as i128 + (1i128 << (s - 1))) >> s) as i64
-}
-/// a·b rounded once (a dot product), shifted right by s.
-fn dot_wide(a: [i64; 3], b: [i64; 3], s: u32) -> i64 {
-    ((a[0] as i128 * b[0] as i128
-        + a[1] as i128 * b[1] as i128
-        + a[2] as i128 * b[2] as i128
-        + (1i128 << (s - 1)))
-        >> s) as i64
-}
-/// (a·b − c·d) rounded and shifted right by s.
-fn mul_sub_wide(a: i64, b: i64, c: i64, d: i64, s: u32) -> i64 {
-    ((a as i128 * b as i128 - c as i128 * d as i128 + (1i128 << (s - 1))) >> s) as i64
-}
+// ---- Scalar references: the kernel's own 128-bit arithmetic. ----
 
 /// The reciprocal-root table of the kernel (`num::fixed_fast`): entry i = ⌊√(2^71/(2(i +
 /// 256) + 1))⌋.

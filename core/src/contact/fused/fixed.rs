@@ -60,9 +60,10 @@ fn shr(x: i64, s: u32) -> i64 {
 }
 
 /// a·b rounded and shifted right by s (1 ≤ s ≤ 64), with a 128-bit product; the result must
-/// fit an i64 (the envelope's bounds).
+/// fit an i64 (the envelope's bounds). Public for the benches that compare other
+/// arithmetic with the kernel's (`benches/benches/exact_lanes.rs`).
 #[inline(always)]
-fn mul_wide(a: i64, b: i64, s: u32) -> i64 {
+pub fn mul_wide(a: i64, b: i64, s: u32) -> i64 {
     ((a as i128 * b as i128 + (1i128 << (s - 1))) >> s) as i64
 }
 
@@ -71,7 +72,7 @@ const HALF_UNIT: i128 = 1 << (STATE - 1);
 
 /// a·b rounded to nearest and shifted right by s (a dot product), 128-bit.
 #[inline(always)]
-fn dot_wide(a: [i64; 3], b: [i64; 3], s: u32) -> i64 {
+pub fn dot_wide(a: [i64; 3], b: [i64; 3], s: u32) -> i64 {
     ((a[0] as i128 * b[0] as i128
         + a[1] as i128 * b[1] as i128
         + a[2] as i128 * b[2] as i128
@@ -81,7 +82,7 @@ fn dot_wide(a: [i64; 3], b: [i64; 3], s: u32) -> i64 {
 
 /// (a·b − c·d) rounded and shifted right by s, 128-bit.
 #[inline(always)]
-fn mul_sub_wide(a: i64, b: i64, c: i64, d: i64, s: u32) -> i64 {
+pub fn mul_sub_wide(a: i64, b: i64, c: i64, d: i64, s: u32) -> i64 {
     ((a as i128 * b as i128 - c as i128 * d as i128 + (1i128 << (s - 1))) >> s) as i64
 }
 
