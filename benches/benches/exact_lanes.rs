@@ -4,8 +4,9 @@
 //! AVX-512 IFMA lanes"). Nothing here is used by the step yet.
 //! - `exact_lanes/product`: the kernel's rounded product (a·b + 2^31) >> 32 of signed
 //!   operands below 2^52;
-//! - `exact_lanes/coarse_root`: the kernel's coarse root of a 64-bit radicand (an even
-//!   normalising shift, the 768-entry reciprocal-root table, two Newton steps, one product);
+//! - `exact_lanes/coarse_root`: the kernel's coarse root (`sqrt_coarse`) of radicands below
+//!   2^64 (an even normalising shift, the 768-entry reciprocal-root table, two Newton steps,
+//!   one product, the shift back rounded);
 //! - `exact_lanes/law_arithmetic`: the kernel's formulas after its geometry and roots (spin
 //!   velocity, contact velocity, Hertz and both dampings, projected history and its
 //!   increment, spring, tangential force, the Coulomb test on exact squares, force and both
@@ -24,7 +25,7 @@
 // bench needs 1.89 to compile (the core and the host do not use them).
 #![allow(clippy::incompatible_msrv)]
 
-use arachis_core::contact::fused::fixed::{dot_wide, mul_sub_wide, mul_wide};
+use arachis_core::contact::fused::fixed::{dot_wide, mul_sub_wide, mul_wide, sqrt_coarse};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::arch::x86_64::*;
 use std::hint::black_box;
@@ -68,32 +69,14 @@ fn q(x: f64) -> i64 {
 
 // ---- Scalar references: the kernel's own 128-bit arithmetic. ----
 
-/// The reciprocal-root table of the kernel (`num::fixed_fast`): entry i = ⌊√(2^71/(2(i +
-/// 256) + 1))⌋.
+/// The kernel's reciprocal-root table (`num::fixed_fast`, private there, and of `u32`): entry
+/// i = ⌊√(2^71/(2(i + 256) + 1))⌋, as 64-bit entries for the lanes' gather. The root group
+/// checks the lanes against the kernel's own [`sqrt_coarse`], so an entry that differed would
+/// fail it.
 fn rsqrt_table() -> Vec<u64> {
     (0..TABLE_LEN)
         .map(|i| ((1u128 << 71) / (2 * (i as u128 + 256) + 1)).isqrt() as u64)
         .collect()
-}
-
-/// The kernel's `rsqrt_q30`: 2^30/√(x/2^64) for x ≥ 2^62.
-fn rsqrt_q30(table: &[u64], x: u64) -> u64 {
-    let x32 = x >> 32;
-    let mut y = table[(x >> 54) as usize - 256];
-    for _ in 0..2 {
-        let y2 = (y * y) >> 30;
-        let t = (x32 * y2) >> 32;
-        y = (y * (3u64 << 30).saturating_sub(t)) >> 31;
-    }
-    y
-}
-
-/// The kernel's coarse root of a nonzero 64-bit radicand (its `sqrt_coarse` without the
-/// 128-bit branch).
-fn sqrt_coarse(table: &[u64], v: u64) -> u64 {
-    let k = v.leading_zeros() & !1;
-    let x = v << k;
-    (((x >> 32) * rsqrt_q30(table, x)) >> 30) >> (k / 2)
 }
 
 /// Settled pod contacts after geometry and roots, structure of arrays (raw Q32.32; the
@@ -316,7 +299,7 @@ mod lanes {
         }
     }
 
-    /// [`super::sqrt_coarse`] on every element (each nonzero).
+    /// The kernel's [`sqrt_coarse`] on every element (each nonzero, below 2^64).
     #[target_feature(enable = "avx512f,avx512dq,avx512cd")]
     pub unsafe fn roots(table: &[u64], v: &[u64], out: &mut [u64]) {
         // Entry i of the table answers the top ten bits 256 + i.
@@ -335,7 +318,11 @@ mod lanes {
                 y = _mm512_srli_epi64::<31>(_mm512_mullo_epi64(y, f));
             }
             let r = _mm512_srli_epi64::<30>(_mm512_mullo_epi64(x32, y));
-            let r = _mm512_srlv_epi64(r, _mm512_srli_epi64::<1>(k));
+            // Back by half the normalising shift, rounded to nearest as the kernel's `shr`
+            // (no rounding for a shift of zero: half of 2^0 is 0).
+            let back = _mm512_srli_epi64::<1>(k);
+            let half = _mm512_srli_epi64::<1>(_mm512_sllv_epi64(_mm512_set1_epi64(1), back));
+            let r = _mm512_srlv_epi64(_mm512_add_epi64(r, half), back);
             _mm512_storeu_si512(out.as_mut_ptr().add(c) as *mut _, r);
         }
     }
@@ -478,7 +465,7 @@ fn bench_root(c: &mut Criterion) {
             (x >> (x % 40)) | 1
         })
         .collect();
-    let want: Vec<u64> = v.iter().map(|&x| sqrt_coarse(&table, x)).collect();
+    let want: Vec<u64> = v.iter().map(|&x| sqrt_coarse(x as u128) as u64).collect();
     let mut got = vec![0; COUNT];
     // SAFETY: the processor has the features; the slices have COUNT elements, a multiple of
     // eight; every radicand is nonzero, so its top ten bits after normalising are 256..=1023.
@@ -489,7 +476,7 @@ fn bench_root(c: &mut Criterion) {
     g.bench_function("scalar", |bench| {
         bench.iter(|| {
             for k in 0..COUNT {
-                got[k] = sqrt_coarse(&table, black_box(v[k]));
+                got[k] = sqrt_coarse(black_box(v[k]) as u128) as u64;
             }
             black_box(&got);
         })

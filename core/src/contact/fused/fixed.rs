@@ -61,7 +61,8 @@ fn shr(x: i64, s: u32) -> i64 {
 
 /// a·b rounded and shifted right by s (1 ≤ s ≤ 64), with a 128-bit product; the result must
 /// fit an i64 (the envelope's bounds). Public for the benches that compare other
-/// arithmetic with the kernel's (`benches/benches/exact_lanes.rs`).
+/// arithmetic with the kernel's (`benches/benches/exact_lanes.rs`), as are [`dot_wide`],
+/// [`mul_sub_wide`] and [`sqrt_coarse`].
 #[inline(always)]
 pub fn mul_wide(a: i64, b: i64, s: u32) -> i64 {
     ((a as i128 * b as i128 + (1i128 << (s - 1))) >> s) as i64
@@ -141,9 +142,10 @@ fn scale_pow2(x: i64, s: i32) -> i64 {
     }
 }
 
-/// √v of a u128 holding Q.64, in Q.32, to about 2^-28 relative (0 for v = 0).
+/// √v of a u128 holding Q.64, in Q.32, to about 2^-28 relative (0 for v = 0). Public, as
+/// [`mul_wide`] is, for `benches/benches/exact_lanes.rs`.
 #[inline(always)]
-fn sqrt_coarse(v: u128) -> i64 {
+pub fn sqrt_coarse(v: u128) -> i64 {
     if v == 0 {
         return 0;
     }
