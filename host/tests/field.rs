@@ -236,6 +236,32 @@ fn bad_field_input_exits_2_naming_file_line_and_key_and_writes_nothing() {
         ),
         ("slow_stride = 10", "slow_stride = 3", "soil.slow_stride"),
         ("settle_s = 0.3", "settle_s = -1.0", "soil.settle_s"),
+        (
+            "duration_s = 0.0075",
+            "duration_s = -1.0",
+            "calm.duration_s",
+        ),
+        (
+            "drag_coefficient = 2.5",
+            "drag_coefficient = 1e9",
+            "calm.drag_coefficient",
+        ),
+        (
+            "medium_density_kg_m3 = 1000.0",
+            "medium_density_kg_m3 = inf",
+            "calm.medium_density_kg_m3",
+        ),
+        // A calm of no medium calms nothing: said at its duration.
+        (
+            "drag_coefficient = 2.5",
+            "drag_coefficient = 0.0",
+            "calm.duration_s",
+        ),
+        (
+            "drag_coefficient = 2.5",
+            "drag_coefficient = 2.5\ndrag_coeficient = 1.0",
+            "drag_coeficient",
+        ),
     ];
     for (from, to, named) in cases {
         assert!(text.contains(from), "{from}");

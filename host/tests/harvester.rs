@@ -194,6 +194,8 @@ fn bad_harvester_input_exits_2_naming_file_line_and_key_and_writes_nothing() {
             "friction = 1e300",
             "steel_contacts.soil.friction",
         ),
+        // The machine must wait out the field's calm (7.5 ms; `arachis::field::calm`).
+        ("settle_s = 0.5", "settle_s = 0.005", "harvester.settle_s"),
     ];
     for (from, to, named) in cases {
         assert!(text.contains(from), "{from}");
@@ -214,6 +216,25 @@ fn bad_harvester_input_exits_2_naming_file_line_and_key_and_writes_nothing() {
         assert!(err.contains("machine.toml"), "{to}: {err}");
     }
     let path = dir.path().join("machine.toml");
+    std::fs::write(
+        &path,
+        text.replacen("settle_s = 0.5", "settle_s = 0.005", 1),
+    )
+    .unwrap();
+    let out = arachis(&[
+        "field",
+        testdata("field-huayu.toml").to_str().unwrap(),
+        "--harvester",
+        path.to_str().unwrap(),
+    ]);
+    let line = text
+        .lines()
+        .position(|l| l.starts_with("settle_s = "))
+        .unwrap()
+        + 1;
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains(&format!(":{line}:")), "line {line}: {err}");
+    assert!(err.contains("calm.duration_s = 0.0075"), "{err}");
     std::fs::write(&path, text.replacen("rows = 6", "rows = 0", 1)).unwrap();
     let out = arachis(&[
         "field",

@@ -49,6 +49,7 @@ mod drum;
 mod experiments_rigs;
 mod export_liggghts;
 mod field;
+mod field_calm;
 mod field_checkpoint;
 mod field_settle;
 mod field_trial;

@@ -24,6 +24,10 @@
 //! Table 12's comparison and where the pods went, `trial.json`, `where-lost.svg`, and each
 //! replicate's pod map).
 //!
+//! The run starts with the field file's calm (`crate::field::calm`): for its first steps a
+//! still, dense medium's drag takes out the ringing of the pegs the settled soil pressed on;
+//! the line's `calm` says how many steps. A harvester must wait it out (its `settle_s`).
+//!
 //! `--frames DIR` writes VTK frames as the run goes (every `--frame-every` steps, and a
 //! ParaView collection `particles.pvd`).
 //!
@@ -43,6 +47,7 @@ use serde::Serialize;
 use crate::arena::{OwnedBonds, OwnedStorage};
 use crate::checkpoint::{self, inputs_hash, Header};
 use crate::count_limits::{count, MAX_REPLICATES};
+use crate::field::calm::CalmPhase;
 use crate::field::layout::holes;
 use crate::field::picture::write_field_picture;
 use crate::field::settle::Settled;
@@ -179,6 +184,8 @@ struct FieldLine {
     pod_depth_mm: [f64; 2],
     /// The soil's settling around the held plants before the run (`crate::field::settle`).
     soil_settling: SettlingLine,
+    /// The calm at the start of the run (`crate::field::calm`): its steps and medium.
+    calm: CalmPhase,
     dt_s: f64,
     /// Field steps per step of the soil ([`crate::field::Soil::slow_stride`], as the soil's
     /// stable step allows it).
@@ -246,6 +253,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .as_deref()
         .map(HarvesterSpec::read)
         .transpose()?;
+    if let (Some(m), Some(path)) = (&machine, &args.harvester) {
+        m.check_waits_for_calm(path, &spec.calm, &args.file)?;
+    }
     let field_loss = args
         .field_loss
         .clone()
@@ -472,11 +482,16 @@ fn run_one(
             world.slow_stride()
         );
     }
+    // No longer than the file's duration, which the machine waits out (checked in `run`).
+    let calm = CalmPhase::of(&spec.calm, world.timestep_s());
     let wanted = Header::new(inputs_hash(spec, machine, seed), seed, 0, 0.0, None);
     let (mut done, wall_before, cpu_before) = match &outputs.checkpoint {
         Some(path) => checkpoint::resume(path, &wanted, steps, &mut world, rig.as_mut())?,
         None => (0, 0.0, 0.0),
     };
+    // The drag is set-up state, not in a checkpoint's words: set it from the steps done.
+    calm.set(&mut world, done)
+        .map_err(|e| anyhow::anyhow!("{}: the calm: {e}", args.file.display()))?;
     let started = Instant::now();
     // The process's CPU clock counts every replicate run so far: this one's starts here.
     let cpu_started = super::simulate::process_cpu_seconds();
@@ -513,8 +528,11 @@ fn run_one(
     while done < steps {
         // Blocks end on frames; both are whole chunks, so the frames change nothing.
         let to_frame = frames.as_ref().map_or(u64::MAX, |f| f.steps_to_next(done));
-        // A chunk at a time: the speed watch looks after each.
-        let n = CHUNK_STEPS.min(steps - done).min(to_frame);
+        // A chunk at a time: the speed watch looks after each; the calm ends between two.
+        let n = CHUNK_STEPS
+            .min(steps - done)
+            .min(to_frame)
+            .min(calm.steps_to_switch(done));
         let stepped = match &mut rig {
             Some(r) => r.advance(&mut world, n),
             None => crate::stepping::run(&mut world, n).map_err(|e| e.to_string()),
@@ -527,6 +545,10 @@ fn run_one(
             )
         })?;
         done += n;
+        if done == calm.steps {
+            calm.set(&mut world, done)
+                .map_err(|e| anyhow::anyhow!("{}: the calm: {e}", args.file.display()))?;
+        }
         bar.set_position(done);
         if let Some(f) = speeds.observe(&world, done) {
             bar.suspend(|| {
@@ -601,6 +623,7 @@ fn run_one(
             -pod_z_mm.iter().copied().fold(f64::MAX, f64::min),
         ],
         soil_settling,
+        calm,
         dt_s: world.timestep_s(),
         soil_stride: world.slow_stride(),
         steps,

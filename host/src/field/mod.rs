@@ -10,7 +10,8 @@
 //! around the pods and stalks ([`soil`]) and settle there while the plants are held
 //! ([`settle`]). [`Field::load_into`] puts everything in one core
 //! world ([`world`]): contacts between plants, between pods of different plants and with the
-//! soil are on.
+//! soil are on. The run starts with a calm ([`calm`]): for its first steps a still, dense
+//! medium's drag takes out what the settled soil's grip on the pegs sets ringing.
 //!
 //! ```
 //! use arachis::field::FieldSpec;
@@ -22,6 +23,7 @@
 //! A bad file is refused before anything is grown, with its path, line and key
 //! ([`FieldErrors`], positioned as a study file's errors are).
 
+pub mod calm;
 pub mod layout;
 pub mod peg;
 pub mod picture;
@@ -169,6 +171,64 @@ fn default_settle_s() -> f64 {
     DEFAULT_SETTLE_S
 }
 
+/// The calm at the start of the field's run ([`calm`]): for its first `duration_s` every
+/// body moves through a still, dense medium whose quadratic drag (the core's air drag,
+/// F = −½ρC_dA|v|v) takes out what the settled field's springs give its light plant spheres.
+/// Absent from a file, [`Calm::default`] (the measured calm) applies.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Calm {
+    /// How long the calm lasts from the run's start, s (0: none). Rounded down to whole
+    /// chunks of the field's [`CHUNK_STEPS`] steps; with a harvester it must end before the
+    /// machine sets off (the harvester's `settle_s` may not be shorter).
+    #[serde(default = "default_calm_s")]
+    pub duration_s: f64,
+    /// Density of the calming medium, kg/m³.
+    #[serde(default = "default_calm_density")]
+    pub medium_density_kg_m3: f64,
+    /// Drag coefficient C_d of every body in it.
+    #[serde(default = "default_calm_drag")]
+    pub drag_coefficient: f64,
+}
+
+/// The default [`Calm::duration_s`], s: 10 000 of the shipped field's 7.46e-7 s steps once
+/// rounded down to whole chunks ([`calm`]).
+pub const DEFAULT_CALM_S: f64 = 0.0075;
+/// The default [`Calm::medium_density_kg_m3`]: water's, kg/m³.
+pub const DEFAULT_CALM_DENSITY_KG_M3: f64 = 1000.0;
+/// The default [`Calm::drag_coefficient`]: with [`DEFAULT_CALM_DENSITY_KG_M3`], a 1 mm peg
+/// sphere of 4 mg at 1 m/s decelerates at about 1 000 m/s², a soil grain at rest feels nothing.
+pub const DEFAULT_CALM_DRAG_COEFFICIENT: f64 = 2.5;
+/// Longest calm, s.
+pub const MAX_CALM_S: f64 = 1.0;
+/// Densest calming medium, kg/m³ (denser than mercury; the drag's products stay well inside
+/// the fixed point).
+pub const MAX_CALM_DENSITY_KG_M3: f64 = 2.0e4;
+/// Largest calming drag coefficient (a flat plate broadside has about 2).
+pub const MAX_CALM_DRAG_COEFFICIENT: f64 = 10.0;
+
+fn default_calm_s() -> f64 {
+    DEFAULT_CALM_S
+}
+
+fn default_calm_density() -> f64 {
+    DEFAULT_CALM_DENSITY_KG_M3
+}
+
+fn default_calm_drag() -> f64 {
+    DEFAULT_CALM_DRAG_COEFFICIENT
+}
+
+impl Default for Calm {
+    fn default() -> Self {
+        Calm {
+            duration_s: DEFAULT_CALM_S,
+            medium_density_kg_m3: DEFAULT_CALM_DENSITY_KG_M3,
+            drag_coefficient: DEFAULT_CALM_DRAG_COEFFICIENT,
+        }
+    }
+}
+
 /// A field file.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -177,6 +237,9 @@ pub struct FieldSpec {
     pub field: Ridge,
     /// The soil bed.
     pub soil: Soil,
+    /// The calm at the start of the run (absent: [`Calm::default`]).
+    #[serde(default)]
+    pub calm: Calm,
     /// The variety file's contents, read by [`FieldSpec::read`].
     #[serde(skip)]
     pub variety: Option<Variety>,
@@ -331,6 +394,35 @@ impl FieldSpec {
                 format!(
                     "must divide the field's {chunk}-step chunk (1, 2, 5, 10, 25, 50, 125 or 250), got {}",
                     s.slow_stride
+                ),
+            );
+        }
+        let c = &self.calm;
+        for (key, v, max, unit) in [
+            ("duration_s", c.duration_s, MAX_CALM_S, " s"),
+            (
+                "medium_density_kg_m3",
+                c.medium_density_kg_m3,
+                MAX_CALM_DENSITY_KG_M3,
+                " kg/m³",
+            ),
+            (
+                "drag_coefficient",
+                c.drag_coefficient,
+                MAX_CALM_DRAG_COEFFICIENT,
+                "",
+            ),
+        ] {
+            if !(v.is_finite() && (0.0..=max).contains(&v)) {
+                bad(&["calm", key], format!("must be 0 to {max}{unit}, got {v}"));
+            }
+        }
+        if c.duration_s > 0.0 && (c.medium_density_kg_m3 == 0.0 || c.drag_coefficient == 0.0) {
+            bad(
+                &["calm", "duration_s"],
+                format!(
+                    "is {} s, but a medium of density {} kg/m³ and drag coefficient {} calms nothing: give both > 0, or duration_s = 0 for no calm",
+                    c.duration_s, c.medium_density_kg_m3, c.drag_coefficient
                 ),
             );
         }

@@ -36,7 +36,7 @@ use std::path::Path;
 use arachis_core::units::LENGTH_M_TO_MM;
 use serde::Deserialize;
 
-use crate::field::ContactValues;
+use crate::field::{Calm, ContactValues};
 use crate::study::error::{file_errors, StudyError};
 use crate::study::source::{decode_checked, read_checked, Source};
 
@@ -60,7 +60,8 @@ pub struct Machine {
     /// Gap between the shovel's edge and the bed's front face at the start, m.
     pub start_gap_m: f64,
     /// Time the field settles under gravity before the machine sets off, s (the bed is laid
-    /// out loose, [`crate::field::soil`]).
+    /// out loose, [`crate::field::soil`]). At least the field's calm
+    /// ([`crate::field::Calm::duration_s`], [`HarvesterSpec::check_waits_for_calm`]).
     pub settle_s: f64,
 }
 
@@ -193,6 +194,41 @@ impl HarvesterSpec {
     /// Reads and checks the harvester file at `path`.
     pub fn read(path: &Path) -> Result<Self, HarvesterErrors> {
         read_checked(path, "harvester", Self::problems).map_err(HarvesterErrors)
+    }
+
+    /// Checks that the machine of the file at `path` waits out the calm at the start of a
+    /// field's run (`calm`, of the field file `field`, [`crate::field::calm`]): it must set
+    /// off into still air, so its `settle_s` may not be shorter than the calm. The error is
+    /// positioned at `harvester.settle_s`.
+    pub fn check_waits_for_calm(
+        &self,
+        path: &Path,
+        calm: &Calm,
+        field: &Path,
+    ) -> Result<(), HarvesterErrors> {
+        if calm.duration_s <= self.harvester.settle_s {
+            return Ok(());
+        }
+        let reason = format!(
+            "must be at least the field's calm ({}: calm.duration_s = {} s), got {}: the machine would set off before the field has come to rest",
+            field.display(),
+            calm.duration_s,
+            self.harvester.settle_s
+        );
+        let at = |text: &str| match Source::parse(path, text) {
+            Ok(source) => vec![source.error_at_keys(&["harvester", "settle_s"], reason.clone())],
+            Err(errors) => errors,
+        };
+        let errors = match crate::io::text::read_text(path) {
+            Ok(text) => at(&text),
+            Err(e) => vec![StudyError {
+                file: path.to_owned(),
+                key: Default::default(),
+                position: None,
+                reason: format!("cannot read the harvester file: {e}"),
+            }],
+        };
+        Err(HarvesterErrors(errors))
     }
 
     /// Every value outside what a harvester can be built from, each at its key.
