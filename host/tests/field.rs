@@ -11,6 +11,7 @@
 //! - The field's world steps with contacts between plants and with the soil, with the same
 //!   bits on 1 and 2 threads.
 //! - Bad field input: exit 2, the file, line and key named, nothing written.
+//! - The printed line names the bonds that broke: by set, and the first break.
 
 use std::path::{Path, PathBuf};
 
@@ -340,4 +341,39 @@ fn the_soil_takes_its_long_step_only_where_its_own_bound_allows() {
     bare.field.ridge_length_m = 0.2;
     bare.field.rows = 1;
     assert_eq!(stride_of(&bare).0, 1);
+}
+
+/// The printed line says which bonds broke: a count by bond set and the first break. A
+/// one-plant field whose pod–stalk bonds hold 1 Pa loses them as soon as it steps.
+#[test]
+fn the_line_names_the_bonds_that_broke() {
+    let dir = tempfile::tempdir().unwrap();
+    let (small, _) = small_field_files(dir.path());
+    let variety = dir.path().join("variety-huayu.toml");
+    let text = std::fs::read_to_string(&variety).unwrap();
+    let junction = "[bonds.pod_stalk]\nkn_n_m3 = 1.33e10\nkt_n_m3 = 5.35e9\nsigma_c_pa = 9.35e5";
+    assert!(text.contains(junction), "the shipped junction");
+    let weak = junction.replace("sigma_c_pa = 9.35e5", "sigma_c_pa = 1.0");
+    std::fs::write(&variety, text.replacen(junction, &weak, 1)).unwrap();
+    let out = arachis(&["field", small.to_str().unwrap(), "--steps", "500"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let line: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let broken = line["bonds_broken"].as_u64().unwrap();
+    assert!(broken > 0, "{line}");
+    assert_eq!(
+        line["bonds_broken_by_set"]["pod_stalk"].as_u64(),
+        Some(broken)
+    );
+    let first = &line["first_break"];
+    assert_eq!(first["set"], "pod_stalk", "{first}");
+    assert_eq!(first["criterion"], "Normal", "{first}");
+    assert!(first["step"].as_u64().unwrap() < 500, "{first}");
+    assert!(
+        first["sigma_max_mpa"].as_f64().unwrap() >= 1.0e-6,
+        "{first}"
+    );
 }

@@ -1,8 +1,9 @@
 //! `arachis field FILE [--seed N] [--steps K] [--vtk FILE.vtk] [--picture FILE.svg]`: lay out
 //! the field of a field file (`crate::field`: the plants of its variety in ridge rows, their
 //! pods in a bed of soil grains), put it in one world, step it K steps (0: none) and print
-//! one JSON line: plants, pods, grains, bonds, where the pods lie, the time step and the
-//! world's digest. `--vtk` writes every sphere for ParaView, `--picture` the plan view of the
+//! one JSON line: plants, pods, grains, bonds and which of them broke (a count by bond set and
+//! the first break: its step, set, criterion and stresses), where the pods lie, the time step
+//! and the world's digest. `--vtk` writes every sphere for ParaView, `--picture` the plan view of the
 //! plants. A bad field or variety file is refused with its path, line and key; nothing is
 //! written.
 //!
@@ -36,6 +37,7 @@
 //! for bit, so a pass of hours can stop and resume; a replicate already done is not run
 //! again. A checkpoint of other inputs or another seed is refused, with its path.
 
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -174,6 +176,11 @@ struct FieldLine {
     bonds: usize,
     /// Bonds broken by the end of the steps (pod–stalk junctions, stalks, stems, leaves).
     bonds_broken: usize,
+    /// The bonds broken, by bond set (`pod_stalk`, …).
+    bonds_broken_by_set: BTreeMap<String, usize>,
+    /// The first bond that broke, if any: when, of which set, and how.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    first_break: Option<BreakLine>,
     /// Fraction of the bed the grains fill.
     soil_fill_fraction: f64,
     bed_min_m: [f64; 3],
@@ -204,6 +211,22 @@ struct FieldLine {
     /// With a harvester: where the pods are so far.
     #[serde(skip_serializing_if = "Option::is_none")]
     harvest: Option<HarvestLine>,
+}
+
+/// One bond's break, as printed.
+#[derive(Debug, Serialize)]
+struct BreakLine {
+    /// The run's step in which it broke.
+    step: u64,
+    /// Its bond set (`pod_stalk`, …).
+    set: String,
+    /// The criterion that broke it (`Normal`: σmax, `Tangential`: τmax, `Both`).
+    criterion: String,
+    /// σmax and τmax at the break, MPa.
+    sigma_max_mpa: f64,
+    tau_max_mpa: f64,
+    /// The bodies of its two spheres.
+    bodies: [u32; 2],
 }
 
 /// The soil's settling, as printed.
@@ -605,6 +628,14 @@ fn run_one(
             (0..3).all(|k| (field.bed_min_m[k]..=field.bed_max_m[k]).contains(&p[k]))
         })
         .count();
+    // The plants of one field share their bond sets (`Field::load_into`).
+    let set_name = |tag: u16| {
+        field
+            .plants
+            .first()
+            .and_then(|p| p.model.set_name(tag))
+            .map_or_else(|| format!("tag {tag}"), str::to_owned)
+    };
     let line = FieldLine {
         name: spec.field.name.clone(),
         seed,
@@ -614,6 +645,25 @@ fn run_one(
         spheres: field.spheres(),
         bonds: field.bond_count(),
         bonds_broken: field.bond_count() - world.bonds().bonds().len(),
+        bonds_broken_by_set: world
+            .bonds()
+            .breaks()
+            .iter()
+            .fold(BTreeMap::new(), |mut by, b| {
+                *by.entry(set_name(b.tag)).or_insert(0) += 1;
+                by
+            }),
+        first_break: world.bonds().breaks().first().map(|b| BreakLine {
+            step: b.step,
+            set: set_name(b.tag),
+            criterion: format!("{:?}", b.criterion),
+            sigma_max_mpa: b.sigma_max_mpa.to_f64(),
+            tau_max_mpa: b.tau_max_mpa.to_f64(),
+            bodies: [
+                world.spheres()[b.sphere_a as usize].body,
+                world.spheres()[b.sphere_b as usize].body,
+            ],
+        }),
         soil_fill_fraction: fill_fraction(&field.grains, field.bed_min_m, field.bed_max_m),
         bed_min_m: field.bed_min_m,
         bed_max_m: field.bed_max_m,
