@@ -16,12 +16,12 @@
 //! step 10 000 on.
 //!
 //! **What it does not do.** It does not hold the field still: what moves slowly, it leaves
-//! alone. The shipped field still breaks the same pod–stalk bond, at step 45 774 instead of
-//! 36 531 (with a calm 10 250 steps long), and six by step 150 000; a calm over all 150 000
-//! steps breaks three. The soil that the settling packed onto the held pegs pushes them down
-//! once they are free, and the plants' laterals and leaves come down under their weight; a
-//! peg bent between its lateral and its pod breaks at the pod (`core/API_NOTES.md`, "A calm
-//! start").
+//! alone. The shipped field still breaks the same pod–stalk bond, at step 45 779 instead of
+//! 36 531; by step 150 000 six are broken with a calm of 10 250 steps as without one, three
+//! under a calm over all of them. The soil that the settling packed onto the held pegs pushes
+//! them down once they are free, and the plants' laterals and leaves come down under their
+//! weight; a peg bent between its lateral and its pod breaks at the pod (`core/API_NOTES.md`,
+//! "A calm start, built, and what it does not fix").
 //!
 //! **When.** From the run's first step for the field file's [`Calm::duration_s`], rounded down
 //! to whole chunks of [`CHUNK_STEPS`] ([`CalmPhase::of`]), so that the drag is switched
