@@ -512,9 +512,12 @@ fn run_one(
         Some(path) => checkpoint::resume(path, &wanted, steps, &mut world, rig.as_mut())?,
         None => (0, 0.0, 0.0),
     };
+    let set_calm = |world: &mut World<'_, Fx>, done: u64| {
+        calm.set(world, done)
+            .map_err(|e| anyhow::anyhow!("{}: the calm: {e}", args.file.display()))
+    };
     // The drag is set-up state, not in a checkpoint's words: set it from the steps done.
-    calm.set(&mut world, done)
-        .map_err(|e| anyhow::anyhow!("{}: the calm: {e}", args.file.display()))?;
+    set_calm(&mut world, done)?;
     let started = Instant::now();
     // The process's CPU clock counts every replicate run so far: this one's starts here.
     let cpu_started = super::simulate::process_cpu_seconds();
@@ -569,8 +572,7 @@ fn run_one(
         })?;
         done += n;
         if done == calm.steps {
-            calm.set(&mut world, done)
-                .map_err(|e| anyhow::anyhow!("{}: the calm: {e}", args.file.display()))?;
+            set_calm(&mut world, done)?;
         }
         bar.set_position(done);
         if let Some(f) = speeds.observe(&world, done) {

@@ -215,20 +215,19 @@ impl HarvesterSpec {
             calm.duration_s,
             self.harvester.settle_s
         );
-        let at = |text: &str| match Source::parse(path, text) {
-            Ok(source) => vec![source.error_at_keys(&["harvester", "settle_s"], reason.clone())],
-            Err(errors) => errors,
+        // The file read well once; read again, it gives the position of `settle_s`.
+        let unpositioned = StudyError {
+            file: path.to_owned(),
+            key: Default::default(),
+            position: None,
+            reason: reason.clone(),
         };
-        let errors = match crate::io::text::read_text(path) {
-            Ok(text) => at(&text),
-            Err(e) => vec![StudyError {
-                file: path.to_owned(),
-                key: Default::default(),
-                position: None,
-                reason: format!("cannot read the harvester file: {e}"),
-            }],
-        };
-        Err(HarvesterErrors(errors))
+        let positioned = read_checked::<HarvesterSpec>(path, "harvester", |_, source| {
+            vec![source.error_at_keys(&["harvester", "settle_s"], reason)]
+        });
+        Err(HarvesterErrors(
+            positioned.err().unwrap_or_else(|| vec![unpositioned]),
+        ))
     }
 
     /// Every value outside what a harvester can be built from, each at its key.
