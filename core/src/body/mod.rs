@@ -16,7 +16,7 @@ pub use clump::{
     clump_mass_properties, ClumpSpec, ClumpSphere, MassProperties, MassSphere, DEFAULT_MASS_GRID,
     MAX_CLUMP_SPHERES,
 };
-pub use force::BodyForce;
+pub use force::{BodyForce, Loads};
 pub use sphere::{Sphere, SphereSpec};
 
 use crate::num::{Quat, Scalar, Vec3};

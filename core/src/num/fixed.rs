@@ -21,6 +21,7 @@
 //! assert!(!(big * big).is_valid());
 //! ```
 
+use super::exact_sum;
 use super::scalar::Scalar;
 use core::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
@@ -439,9 +440,11 @@ fn rsqrt_q62(x: u64) -> u64 {
 }
 
 impl Scalar for Fx {
-    /// Raw Q32.32 values summed in 128 bits: a sum of fewer than 2^64 valid terms cannot
-    /// overflow, and integer addition is associative.
-    type Sum = i128;
+    /// Raw Q32.32 values summed exactly: the sum's low 64 bits here and how many times it
+    /// wrapped in [`Scalar::SumWraps`] ([`exact_sum`]), the integer a 128-bit sum holds.
+    /// Integer addition is associative, so the sum does not depend on the order of its terms.
+    type Sum = i64;
+    type SumWraps = i32;
     type Fast = super::FxFast;
     const ZERO: Self = Fx(0);
     const ONE: Self = Fx(ONE_RAW);
@@ -457,20 +460,32 @@ impl Scalar for Fx {
         x.into()
     }
     #[inline(always)]
-    fn sum_add(sum: &mut i128, x: Fx) {
-        *sum += x.0 as i128;
+    fn sum_add(sum: &mut i64, wraps: &mut i32, x: Fx) {
+        exact_sum::add(sum, wraps, x.0);
     }
     #[inline(always)]
-    fn sum_sub(sum: &mut i128, x: Fx) {
-        *sum -= x.0 as i128;
+    fn sum_sub(sum: &mut i64, wraps: &mut i32, x: Fx) {
+        exact_sum::sub(sum, wraps, x.0);
     }
     #[inline(always)]
-    fn sum_merge(sum: &mut i128, other: i128) {
-        *sum += other;
+    fn sum_merge(sum: &mut i64, wraps: &mut i32, other: i64, other_wraps: i32) {
+        exact_sum::merge(sum, wraps, other, other_wraps);
     }
     #[inline(always)]
-    fn sum_value(sum: i128) -> Fx {
-        Fx::check(sum)
+    fn sum_value(sum: i64, wraps: i32) -> Fx {
+        // A branch to the cold poison, not a conditional move (see `poisoned`).
+        if wraps != 0 {
+            return poisoned();
+        }
+        Fx(sum)
+    }
+    #[inline(always)]
+    fn sums_in_range(wraps: &[i32; 7]) -> bool {
+        exact_sum::none_wrapped(wraps)
+    }
+    #[inline(always)]
+    fn sum_low(sum: i64) -> Fx {
+        Fx(sum)
     }
 
     fn from_f64(x: f64) -> Self {

@@ -24,6 +24,7 @@
 //! assert!(x.within(2) && !x.within(1));
 //! ```
 
+use super::exact_sum;
 use super::fixed::FRAC_BITS;
 use super::scalar::Scalar;
 use super::{Fx, Vec3};
@@ -287,7 +288,8 @@ impl SubAssign for FxFast {
 }
 
 impl Scalar for FxFast {
-    type Sum = i128;
+    type Sum = i64;
+    type SumWraps = i32;
     type Fast = FxFast;
     const ZERO: Self = FxFast(0);
     const ONE: Self = FxFast(1 << FRAC_BITS);
@@ -303,20 +305,28 @@ impl Scalar for FxFast {
         x
     }
     #[inline(always)]
-    fn sum_add(sum: &mut i128, x: Self) {
-        *sum += x.0 as i128;
+    fn sum_add(sum: &mut i64, wraps: &mut i32, x: Self) {
+        exact_sum::add(sum, wraps, x.0);
     }
     #[inline(always)]
-    fn sum_sub(sum: &mut i128, x: Self) {
-        *sum -= x.0 as i128;
+    fn sum_sub(sum: &mut i64, wraps: &mut i32, x: Self) {
+        exact_sum::sub(sum, wraps, x.0);
     }
     #[inline(always)]
-    fn sum_merge(sum: &mut i128, other: i128) {
-        *sum += other;
+    fn sum_merge(sum: &mut i64, wraps: &mut i32, other: i64, other_wraps: i32) {
+        exact_sum::merge(sum, wraps, other, other_wraps);
     }
     #[inline(always)]
-    fn sum_value(sum: i128) -> Self {
-        Fx::sum_value(sum).into()
+    fn sum_value(sum: i64, wraps: i32) -> Self {
+        Fx::sum_value(sum, wraps).into()
+    }
+    #[inline(always)]
+    fn sums_in_range(wraps: &[i32; 7]) -> bool {
+        exact_sum::none_wrapped(wraps)
+    }
+    #[inline(always)]
+    fn sum_low(sum: i64) -> Self {
+        FxFast(sum)
     }
     fn from_f64(x: f64) -> Self {
         Fx::from_f64(x).into()

@@ -3,6 +3,7 @@
 //! The same stepping code runs in Q32.32 fixed point ([`Fx`], the production path, integer
 //! arithmetic only) and in `f64` (the reference path, used to *measure* quantisation error).
 
+pub mod exact_sum;
 pub mod fixed;
 pub mod fixed_fast;
 pub mod lanes;

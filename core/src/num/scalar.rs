@@ -33,6 +33,9 @@ pub trait Scalar:
     /// they were split between threads (DESIGN §5). `f64`: an `f64`, whose sum depends on the
     /// order, as in every floating-point engine.
     type Sum: Copy + Debug + Default + PartialEq + Send + Sync + 'static;
+    /// What an accumulator keeps beside each [`Scalar::Sum`] to stay exact. Fixed point:
+    /// how many times the 64-bit sum wrapped ([`crate::num::exact_sum`]); `f64`: nothing.
+    type SumWraps: Copy + Debug + Default + PartialEq + Send + Sync + 'static;
     /// The same numbers with unchecked arithmetic and fast roots, for the fused contact
     /// kernel inside its overflow envelope ([`super::FxFast`] for fixed point; `f64` itself).
     type Fast: super::Envelope;
@@ -55,14 +58,23 @@ pub trait Scalar:
     fn to_fast(self) -> Self::Fast;
     /// A [`Scalar::Fast`] value back (the same bits).
     fn from_fast(x: Self::Fast) -> Self;
-    /// Add a valid value to an accumulator.
-    fn sum_add(sum: &mut Self::Sum, x: Self);
+    /// Add a valid value to an accumulator (its sum and wraps).
+    fn sum_add(sum: &mut Self::Sum, wraps: &mut Self::SumWraps, x: Self);
     /// Subtract a valid value from an accumulator.
-    fn sum_sub(sum: &mut Self::Sum, x: Self);
+    fn sum_sub(sum: &mut Self::Sum, wraps: &mut Self::SumWraps, x: Self);
     /// Add another accumulator.
-    fn sum_merge(sum: &mut Self::Sum, other: Self::Sum);
+    fn sum_merge(
+        sum: &mut Self::Sum,
+        wraps: &mut Self::SumWraps,
+        other: Self::Sum,
+        other_wraps: Self::SumWraps,
+    );
     /// The accumulated value; invalid when it does not fit the scalar's range.
-    fn sum_value(sum: Self::Sum) -> Self;
+    fn sum_value(sum: Self::Sum, wraps: Self::SumWraps) -> Self;
+    /// Whether every sum whose wraps these are lies in the scalar's range.
+    fn sums_in_range(wraps: &[Self::SumWraps; 7]) -> bool;
+    /// The value of a sum known to lie in the range ([`Scalar::sums_in_range`]).
+    fn sum_low(sum: Self::Sum) -> Self;
 
     /// Quantise an `f64` (set-up only). Fixed point rounds to nearest; out-of-range or
     /// non-finite input gives the invalid value.
@@ -141,6 +153,7 @@ pub trait Scalar:
 
 impl Scalar for f64 {
     type Sum = f64;
+    type SumWraps = ();
     type Fast = f64;
     const ZERO: Self = 0.0;
     const ONE: Self = 1.0;
@@ -157,19 +170,27 @@ impl Scalar for f64 {
         x
     }
     #[inline(always)]
-    fn sum_add(sum: &mut f64, x: f64) {
+    fn sum_add(sum: &mut f64, _: &mut (), x: f64) {
         *sum += x;
     }
     #[inline(always)]
-    fn sum_sub(sum: &mut f64, x: f64) {
+    fn sum_sub(sum: &mut f64, _: &mut (), x: f64) {
         *sum -= x;
     }
     #[inline(always)]
-    fn sum_merge(sum: &mut f64, other: f64) {
+    fn sum_merge(sum: &mut f64, _: &mut (), other: f64, _: ()) {
         *sum += other;
     }
     #[inline(always)]
-    fn sum_value(sum: f64) -> f64 {
+    fn sum_value(sum: f64, _: ()) -> f64 {
+        sum
+    }
+    #[inline(always)]
+    fn sums_in_range(_: &[(); 7]) -> bool {
+        true
+    }
+    #[inline(always)]
+    fn sum_low(sum: f64) -> f64 {
         sum
     }
 

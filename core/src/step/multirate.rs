@@ -46,7 +46,7 @@
 //! assert!((v + 9.81 * 4e-5).abs() < 1e-9);
 //! ```
 
-use crate::body::{Body, BodyForce};
+use crate::body::{Body, Loads};
 use crate::num::{Scalar, Vec3};
 use core::ops::Range;
 
@@ -153,18 +153,19 @@ pub(crate) fn times<S: Scalar>(v: Vec3<S>, stride: u32) -> Vec3<S> {
 }
 
 /// The mean of a cycle's sums, ΣF/k (rounded to nearest in fixed point).
-pub(crate) fn cycle_mean<S: Scalar>(sums: &BodyForce<S>, stride: u32) -> BodyForce<S> {
+pub(crate) fn cycle_mean<S: Scalar>(sums: &Loads<S>, stride: u32) -> Loads<S> {
     let k = S::ONE.mul_int(stride as i32);
-    let mut mean = BodyForce::default();
-    mean.add_force(sums.force().map(|x| x / k));
-    mean.add_torque(sums.torque().map(|x| x / k));
-    mean.add_roll(sums.roll() / k);
-    mean
+    Loads {
+        force: sums.force.map(|x| x / k),
+        torque: sums.torque.map(|x| x / k),
+        roll: sums.roll / k,
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::body::BodyForce;
     use crate::num::Fx;
 
     #[test]
@@ -234,14 +235,14 @@ mod tests {
             sums.add_torque(f.map(|x| -x));
             sums.add_roll(Fx::ONE);
         }
-        let mean = cycle_mean(&sums, 3);
-        assert_eq!(mean.force(), f);
-        assert_eq!(mean.torque(), f.map(|x| -x));
-        assert_eq!(mean.roll(), Fx::ONE);
+        let mean = cycle_mean(&sums.values(), 3);
+        assert_eq!(mean.force, f);
+        assert_eq!(mean.torque, f.map(|x| -x));
+        assert_eq!(mean.roll, Fx::ONE);
         // 1 N over 3 steps: 1/3 N to half a unit of 2^-32 N.
         let mut one = BodyForce::<Fx>::default();
         one.add_force(Vec3::new(Fx::ONE, Fx::ZERO, Fx::ZERO));
-        let third = cycle_mean(&one, 3).force().x.to_f64();
+        let third = cycle_mean(&one.values(), 3).force.x.to_f64();
         assert!((third - 1.0 / 3.0).abs() <= 0.5 / 4_294_967_296.0);
     }
 

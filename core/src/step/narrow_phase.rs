@@ -112,8 +112,8 @@ pub(crate) struct ContactPart<'w, S: Scalar> {
     pub beyond: &'w mut [BodyForce<S>],
     /// Bodies written in `beyond`, as a range (empty when none).
     pub beyond_touched: Range<usize>,
-    /// Force on each wall, N.
-    pub wall_force: [[S::Sum; 3]; MAX_WALLS],
+    /// Force on each wall, N (the force sums of an accumulator).
+    pub wall_force: [BodyForce<S>; MAX_WALLS],
     /// The first error, if any.
     pub result: Result<(), StepError>,
 }
@@ -475,10 +475,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         owner.sub_force(load.force);
         owner.add_torque(-load.torque_i);
         owner.add_roll(load.roll_i);
-        let wf = &mut self.wall_force[wi];
-        S::sum_add(&mut wf[0], load.force.x);
-        S::sum_add(&mut wf[1], load.force.y);
-        S::sum_add(&mut wf[2], load.force.z);
+        self.wall_force[wi].add_force(load.force);
         self.entries[e] = NeighbourEntry {
             partner: key | LIVE_FLAG,
             delta: delta.map(S::from_fast),
@@ -551,10 +548,7 @@ impl<'w, S: Scalar> ContactPart<'w, S> {
         let bi = lane.body_i as usize;
         if lane.is_wall() {
             self.apply(load, bi, None);
-            let wf = &mut self.wall_force[lane.wall as usize];
-            S::sum_add(&mut wf[0], load.force.x);
-            S::sum_add(&mut wf[1], load.force.y);
-            S::sum_add(&mut wf[2], load.force.z);
+            self.wall_force[lane.wall as usize].add_force(load.force);
         } else {
             self.apply(load, bi, Some(lane.body_j as usize));
         }

@@ -4,7 +4,7 @@
 use super::World;
 use crate::body::BodyForce;
 use crate::error::StepError;
-use crate::num::{Scalar, Vec3};
+use crate::num::Scalar;
 use crate::step::bonds::{prepare, remove_broken, BondPart, BondShared, Clock, MIN_BONDS_PER_PART};
 use crate::step::integration::IntegratePart;
 use crate::step::multirate::Cycle;
@@ -243,7 +243,7 @@ impl<S: Scalar> World<'_, S> {
                     own: o,
                     beyond,
                     beyond_touched: 0..0,
-                    wall_force: [[S::Sum::default(); 3]; MAX_WALLS],
+                    wall_force: [BodyForce::default(); MAX_WALLS],
                     result: Ok(()),
                 });
             }
@@ -253,14 +253,12 @@ impl<S: Scalar> World<'_, S> {
         });
         let times = part_times::<S, P, N>(par, jobs.len());
         let mut touched = Ranges::<N>::new();
-        let mut wall_sums = [[S::Sum::default(); 3]; MAX_WALLS];
+        let mut wall_sums = [BodyForce::<S>::default(); MAX_WALLS];
         for part in jobs.iter() {
             part.result?;
             let _ = touched.push(part.beyond_touched.clone());
             for (sum, f) in wall_sums.iter_mut().zip(part.wall_force.iter()) {
-                for k in 0..3 {
-                    S::sum_merge(&mut sum[k], f[k]);
-                }
+                sum.merge(f);
             }
         }
         drop(jobs);
@@ -275,11 +273,7 @@ impl<S: Scalar> World<'_, S> {
             balance.record(nb, parts.iter().cloned());
         }
         for (w, sum) in self.walls.iter_mut().zip(wall_sums.iter()) {
-            w.force = Vec3::new(
-                S::sum_value(sum[0]),
-                S::sum_value(sum[1]),
-                S::sum_value(sum[2]),
-            );
+            w.force = sum.force();
         }
         Ok(touched)
     }

@@ -9,7 +9,7 @@
 //! principal frame; rolling friction capped so that it never reverses ω; the orientation
 //! advanced and renormalised; each clump sphere placed at x + R·offset.
 
-use crate::body::{Body, BodyForce};
+use crate::body::{Body, Loads};
 use crate::num::{Envelope, Quat, Scalar, Vec3};
 
 /// The motion of a body, in arithmetic T.
@@ -48,10 +48,15 @@ pub(super) struct Inertia<T> {
 #[inline(always)]
 pub(super) fn state_of<S: Scalar, T: Scalar>(
     b: &Body<S>,
-    sums: &BodyForce<S>,
+    sums: &Loads<S>,
     f: impl Fn(S) -> T + Copy,
 ) -> (Motion<T>, Inertia<T>) {
     let q = b.orientation;
+    let Loads {
+        force,
+        torque,
+        roll,
+    } = *sums;
     (
         Motion {
             position: b.position.map(f),
@@ -63,9 +68,9 @@ pub(super) fn state_of<S: Scalar, T: Scalar>(
                 y: f(q.y),
                 z: f(q.z),
             },
-            force: sums.force().map(f),
-            torque: sums.torque().map(f),
-            roll: f(sums.roll()),
+            force: force.map(f),
+            torque: torque.map(f),
+            roll: f(roll),
         },
         Inertia {
             mass: f(b.mass),

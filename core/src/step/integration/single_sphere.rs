@@ -9,14 +9,14 @@
 //! finite ([`move_sphere_generic`]). Outside the bounds either returns `None`, and the
 //! checked arithmetic moves the body and reports any overflow.
 
-use crate::body::{Body, BodyForce};
+use crate::body::{Body, Loads};
 use crate::num::{Envelope, FxFast, Scalar, Vec3};
 
 /// One step of single-sphere body `b` under its force sums, or `None` outside the bounds.
 #[inline(always)]
 pub(super) fn move_sphere<S: Scalar>(
     b: &Body<S>,
-    sums: &BodyForce<S>,
+    sums: &Loads<S>,
     dt: S,
     g: Vec3<S>,
 ) -> Option<SphereMove<S>> {
@@ -27,10 +27,15 @@ pub(super) fn move_sphere<S: Scalar>(
     let raw3 = |v: Vec3<S>| [raw(v.x), raw(v.y), raw(v.z)];
     let back = |x: i64| S::from_bits(x as u64);
     let back3 = |v: [i64; 3]| Vec3::new(back(v[0]), back(v[1]), back(v[2]));
+    let Loads {
+        force,
+        torque,
+        roll,
+    } = *sums;
     let m = move_sphere_q32(&Q32Sphere {
-        force: raw3(sums.force()),
-        torque: raw3(sums.torque()),
-        roll: raw(sums.roll()),
+        force: raw3(force),
+        torque: raw3(torque),
+        roll: raw(roll),
         velocity: raw3(b.velocity),
         position: raw3(b.position),
         spin: raw3(b.angular_velocity),
@@ -244,17 +249,18 @@ pub(super) struct SphereMove<S> {
 #[inline(always)]
 fn move_sphere_generic<S: Scalar>(
     b: &Body<S>,
-    sums: &BodyForce<S>,
+    sums: &Loads<S>,
     dt: S,
     g: Vec3<S>,
 ) -> Option<SphereMove<S>> {
     type F<S> = <S as Scalar>::Fast;
     let fast3 = |v: Vec3<S>| v.map(S::to_fast);
-    let (force, torque, roll) = (
-        fast3(sums.force()),
-        fast3(sums.torque()),
-        sums.roll().to_fast(),
-    );
+    let Loads {
+        force,
+        torque,
+        roll,
+    } = *sums;
+    let (force, torque, roll) = (fast3(force), fast3(torque), roll.to_fast());
     let (vel, pos, w0) = (
         fast3(b.velocity),
         fast3(b.position),
