@@ -24,7 +24,6 @@
 //! assert!(x.within(2) && !x.within(1));
 //! ```
 
-use super::exact_sum;
 use super::fixed::FRAC_BITS;
 use super::scalar::Scalar;
 use super::{Fx, Vec3};
@@ -304,17 +303,18 @@ impl Scalar for FxFast {
     fn from_fast(x: FxFast) -> Self {
         x
     }
+    // The sums are Fx's, on the same raw integers.
     #[inline(always)]
     fn sum_add(sum: &mut i64, wraps: &mut i32, x: Self) {
-        exact_sum::add(sum, wraps, x.0);
+        Fx::sum_add(sum, wraps, x.into());
     }
     #[inline(always)]
     fn sum_sub(sum: &mut i64, wraps: &mut i32, x: Self) {
-        exact_sum::sub(sum, wraps, x.0);
+        Fx::sum_sub(sum, wraps, x.into());
     }
     #[inline(always)]
     fn sum_merge(sum: &mut i64, wraps: &mut i32, other: i64, other_wraps: i32) {
-        exact_sum::merge(sum, wraps, other, other_wraps);
+        Fx::sum_merge(sum, wraps, other, other_wraps);
     }
     #[inline(always)]
     fn sum_value(sum: i64, wraps: i32) -> Self {
@@ -322,11 +322,11 @@ impl Scalar for FxFast {
     }
     #[inline(always)]
     fn sums_in_range(wraps: &[i32; 7]) -> bool {
-        exact_sum::none_wrapped(wraps)
+        Fx::sums_in_range(wraps)
     }
     #[inline(always)]
     fn sum_low(sum: i64) -> Self {
-        FxFast(sum)
+        Fx::sum_low(sum).into()
     }
     fn from_f64(x: f64) -> Self {
         Fx::from_f64(x).into()
