@@ -72,9 +72,9 @@ impl<S: Scalar> BodyForce<S> {
     #[inline(always)]
     pub fn sub_force(&mut self, f: Vec3<S>) {
         let w = &mut self.wraps;
-        S::sum_sub(&mut self.force[0], &mut w[0], f.x);
-        S::sum_sub(&mut self.force[1], &mut w[1], f.y);
-        S::sum_sub(&mut self.force[2], &mut w[2], f.z);
+        S::sum_sub(&mut self.force[0], &mut w[FORCE], f.x);
+        S::sum_sub(&mut self.force[1], &mut w[FORCE + 1], f.y);
+        S::sum_sub(&mut self.force[2], &mut w[FORCE + 2], f.z);
     }
     /// Add a torque, N·mm.
     #[inline(always)]
@@ -91,7 +91,8 @@ impl<S: Scalar> BodyForce<S> {
     pub fn merge(&mut self, o: &Self) {
         let w = &mut self.wraps;
         for k in 0..3 {
-            S::sum_merge(&mut self.force[k], &mut w[k], o.force[k], o.wraps[k]);
+            let f = FORCE + k;
+            S::sum_merge(&mut self.force[k], &mut w[f], o.force[k], o.wraps[f]);
             let t = TORQUE + k;
             S::sum_merge(&mut self.torque[k], &mut w[t], o.torque[k], o.wraps[t]);
         }
