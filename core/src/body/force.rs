@@ -144,3 +144,58 @@ pub struct Loads<S> {
     /// Rolling-resistance torque magnitude, N·mm.
     pub roll: S,
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::num::Fx;
+
+    /// 2^30 N (or N·mm): three of them leave the fixed-point range (±2^31).
+    fn big() -> Fx {
+        Fx::from_f64(1_073_741_824.0)
+    }
+
+    /// A sum that leaves the range reads as invalid, in `values` as in `force`, and as valid
+    /// again once it returns, exactly; the same when its terms arrive in two accumulators
+    /// merged afterwards (two threads' shares), and the other sums stay readable meanwhile.
+    #[test]
+    fn a_sum_out_of_range_is_invalid_until_it_returns_in_any_split() {
+        let out = Vec3::new(big(), Fx::ZERO, Fx::ZERO);
+        let mut one = BodyForce::<Fx>::default();
+        let (mut first, mut second) = (BodyForce::<Fx>::default(), BodyForce::<Fx>::default());
+        for _ in 0..3 {
+            one.add_force(out);
+            first.add_force(out);
+        }
+        one.add_torque(Vec3::new(Fx::ONE, Fx::ZERO, Fx::ZERO));
+        second.add_torque(Vec3::new(Fx::ONE, Fx::ZERO, Fx::ZERO));
+        first.merge(&second);
+        for (name, sums) in [("one accumulator", one), ("two merged", first)] {
+            let loads = sums.values();
+            assert!(!loads.force.x.is_valid(), "{name}: 3·2^30 N read as valid");
+            assert_eq!(loads.force.y, Fx::ZERO, "{name}");
+            assert_eq!(
+                loads.torque.x,
+                Fx::ONE,
+                "{name}: the torque sum is in range"
+            );
+            assert_eq!(
+                sums.force().x.is_valid(),
+                loads.force.x.is_valid(),
+                "{name}"
+            );
+        }
+        one.sub_force(out);
+        one.sub_force(out);
+        let loads = one.values();
+        assert_eq!(loads.force.x, big(), "back in range, exactly");
+        assert_eq!(
+            loads,
+            Loads {
+                force: one.force(),
+                torque: one.torque(),
+                roll: one.roll()
+            }
+        );
+    }
+}
