@@ -8,9 +8,9 @@
 //! writes it. Here a term is added to the 64-bit low word alone; the processor's overflow flag
 //! says when the signed sum left the 64-bit range, and a cold branch, taken only then, counts
 //! the wrap in a 32-bit counter kept beside it (an accumulator keeps its seven counters
-//! together, so a body's accumulator takes 88 bytes instead of 112). The pair (low, wraps) stands for
-//! low + wraps·2^64, the integer the 128-bit sum held, and is unique for it: every order and
-//! every split still gives the same bits. A sum whose wraps are not zero lies outside the
+//! together, so a body's accumulator takes 88 bytes instead of 112). The pair (low, wraps)
+//! stands for low + wraps·2^64, the integer the 128-bit sum held, and is unique for it: every
+//! order and every split still gives the same bits. A sum whose wraps are not zero lies outside the
 //! 64-bit range and reads as out of range, as the 128-bit sum did. The counter cannot
 //! overflow: each term moves it by at most one, and no step adds 2^31 terms to one body.
 //!
