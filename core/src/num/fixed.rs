@@ -473,11 +473,11 @@ impl Scalar for Fx {
     }
     #[inline(always)]
     fn sum_value(sum: i64, wraps: i32) -> Fx {
-        // A branch to the cold poison, not a conditional move (see `poisoned`).
-        if wraps != 0 {
-            return poisoned();
+        match exact_sum::value(sum, wraps) {
+            Some(v) => Fx(v),
+            // A branch to the cold poison, not a conditional move (see `poisoned`).
+            None => poisoned(),
         }
-        Fx(sum)
     }
     #[inline(always)]
     fn sums_in_range(wraps: &[i32; 7]) -> bool {

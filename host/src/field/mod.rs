@@ -174,20 +174,18 @@ fn default_settle_s() -> f64 {
 /// The calm at the start of the field's run ([`calm`]): for its first `duration_s` every
 /// body moves through a still, dense medium whose quadratic drag (the core's air drag,
 /// F = −½ρC_dA|v|v) takes out what the settled field's springs give its light plant spheres.
-/// Absent from a file, [`Calm::default`] (the measured calm) applies.
+/// Absent from a file, [`Calm::default`] (the measured calm) applies, and so do its values
+/// for the keys a `[calm]` table leaves out.
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, default)]
 pub struct Calm {
     /// How long the calm lasts from the run's start, s (0: none). Rounded down to whole
     /// chunks of the field's [`CHUNK_STEPS`] steps; with a harvester it must end before the
     /// machine sets off (the harvester's `settle_s` may not be shorter).
-    #[serde(default = "default_calm_s")]
     pub duration_s: f64,
     /// Density of the calming medium, kg/m³.
-    #[serde(default = "default_calm_density")]
     pub medium_density_kg_m3: f64,
     /// Drag coefficient C_d of every body in it.
-    #[serde(default = "default_calm_drag")]
     pub drag_coefficient: f64,
 }
 
@@ -206,18 +204,6 @@ pub const MAX_CALM_S: f64 = 1.0;
 pub const MAX_CALM_DENSITY_KG_M3: f64 = 2.0e4;
 /// Largest calming drag coefficient (a flat plate broadside has about 2).
 pub const MAX_CALM_DRAG_COEFFICIENT: f64 = 10.0;
-
-fn default_calm_s() -> f64 {
-    DEFAULT_CALM_S
-}
-
-fn default_calm_density() -> f64 {
-    DEFAULT_CALM_DENSITY_KG_M3
-}
-
-fn default_calm_drag() -> f64 {
-    DEFAULT_CALM_DRAG_COEFFICIENT
-}
 
 impl Default for Calm {
     fn default() -> Self {
